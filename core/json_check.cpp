@@ -47,7 +47,10 @@ void JsonReader::fail(const std::string& key, const std::string& message) const 
   throw ConfigError(file_ + ": " + key_path(key) + ": " + message);
 }
 
-bool JsonReader::has(const std::string& key) const { return j_.contains(key); }
+bool JsonReader::has(const std::string& key) const {
+  asked_.insert(key);
+  return j_.contains(key);
+}
 
 const nlohmann::json& JsonReader::find(const std::string& key) const {
   auto it = j_.find(key);
@@ -57,6 +60,7 @@ const nlohmann::json& JsonReader::find(const std::string& key) const {
 
 const nlohmann::json& JsonReader::raw(const std::string& key) {
   used_.insert(key);
+  asked_.insert(key);
   return find(key);
 }
 
@@ -175,10 +179,10 @@ void JsonReader::finish() const {
   for (auto it = j_.begin(); it != j_.end(); ++it)
     if (!used_.count(it.key())) unknown.push_back(it.key());
   if (unknown.empty()) return;
-  std::vector<std::string> known(used_.begin(), used_.end());
+  std::vector<std::string> known(asked_.begin(), asked_.end());
   throw ConfigError(file_ + ": " + key_path(unknown.front()) + ": unknown key" +
                     (unknown.size() > 1 ? " (also unknown: " + join({unknown.begin() + 1, unknown.end()}) + ")" : "") +
-                    (known.empty() ? "" : "; keys read here: " + join(known)));
+                    (known.empty() ? "" : "; allowed keys here: " + join(known)));
 }
 
 }  // namespace glintlab

@@ -73,6 +73,7 @@ class JsonReader {
   std::string file_;
   std::string path_;
   std::set<std::string> used_;
+  mutable std::set<std::string> asked_;  // every key the caller knows, present or not
 };
 
 }  // namespace glintlab

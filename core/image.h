@@ -1,4 +1,4 @@
-// A CPU float image: the one currency between the renderer's readback, image
+// A CPU float image (no Vulkan, no metrics): the one currency between the renderer's readback, image
 // files and every metric. Scene-linear RGBA unless a function says otherwise.
 #pragma once
 
