@@ -9,7 +9,7 @@ PKGS=(
   libopenimageio-dev openimageio-tools
   libopencolorio-dev opencolorio-tools
   libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libxxhash-dev ninja-build
 )
 missing=()
 for p in "${PKGS[@]}"; do

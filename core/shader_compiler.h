@@ -1,0 +1,48 @@
+// Run-time GLSL -> SPIR-V with glslang: #include resolved against the shader
+// tree (and the including file's folder), defines as "NAME" or "NAME=VALUE",
+// errors reported as file:line, and SPIR-V cached on disk by the hash of the
+// fully preprocessed source (so an edit in any include invalidates it).
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace glintlab::core {
+
+enum class ShaderStage { Vertex, Fragment, Compute };
+
+class ShaderCompileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct CompiledShader {
+  std::vector<uint32_t> spirv;
+  std::string source_hash;  // hash of preprocessed source + stage + defines
+  bool from_cache = false;
+};
+
+class ShaderCompiler {
+ public:
+  // cache_dir "" = $XDG_CACHE_HOME/glintlab/spirv (or ~/.cache/...); "-" = no disk cache.
+  explicit ShaderCompiler(std::string shader_dir = GLINTLAB_SHADER_DIR, std::string cache_dir = "");
+
+  // `path` is relative to the shader folder (or absolute).
+  CompiledShader compile(const std::string& path, ShaderStage stage, const std::vector<std::string>& defines = {});
+  // Preprocesses only: the hash that identifies what compile() would produce.
+  std::string source_hash(const std::string& path, ShaderStage stage, const std::vector<std::string>& defines = {});
+
+  const std::string& shader_dir() const { return shader_dir_; }
+  const std::string& cache_dir() const { return cache_dir_; }
+
+ private:
+  std::string shader_dir_;
+  std::string cache_dir_;
+};
+
+// The process-wide compiler for the project's shader folder.
+ShaderCompiler& default_shader_compiler();
+
+}  // namespace glintlab::core

@@ -1,0 +1,99 @@
+// Headless Vulkan context: instance (+ validation when asked), one physical
+// device (lavapipe by default), one queue that does graphics, compute and
+// transfer, a command pool and a validation-message counter. Explicit Vulkan
+// in the style of Sascha Willems' renderheadless, with small RAII helpers.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <functional>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace glintlab::core {
+
+class VulkanError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws VulkanError naming the call and the VkResult.
+void vk_check(VkResult r, const char* what);
+
+struct ContextOptions {
+  // "" = default (lavapipe if present, else the first device); a decimal
+  // number = index in `list_devices()`; otherwise a case-insensitive
+  // substring of the device name.
+  std::string device;
+  // Enables VK_LAYER_KHRONOS_validation (core + synchronization). Every
+  // warning or error it reports is counted; tests require zero.
+  bool validation = false;
+};
+
+struct DeviceInfo {
+  uint32_t index;
+  std::string name;
+  std::string type;  // "cpu", "discrete-gpu", ...
+  std::string api_version;
+};
+
+class VkContext {
+ public:
+  explicit VkContext(const ContextOptions& options = {});
+  ~VkContext();
+  VkContext(const VkContext&) = delete;
+  VkContext& operator=(const VkContext&) = delete;
+
+  static std::vector<DeviceInfo> list_devices();
+  // True when GLINTLAB_VALIDATION=1 is set (tests and CI set it).
+  static bool validation_requested_by_env();
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physical_device() const { return physical_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queue_family() const { return queue_family_; }
+  VkCommandPool command_pool() const { return pool_; }
+  const DeviceInfo& info() const { return info_; }
+  const VkPhysicalDeviceProperties& properties() const { return props_; }
+  bool validation_enabled() const { return validation_; }
+
+  // Nanoseconds per timestamp tick, and whether timestamps work on the queue.
+  double timestamp_period_ns() const { return props_.limits.timestampPeriod; }
+  bool timestamps_supported() const { return timestamp_valid_bits_ > 0; }
+  uint32_t timestamp_valid_bits() const { return timestamp_valid_bits_; }
+
+  uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;
+  bool format_supports(VkFormat format, VkFormatFeatureFlags features) const;
+
+  // Records with `record` into a fresh primary command buffer, submits and waits.
+  void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
+
+  size_t validation_message_count() const;
+  std::vector<std::string> validation_messages() const;
+
+ private:
+  void destroy();
+  static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                       VkDebugUtilsMessageTypeFlagsEXT types,
+                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queue_family_ = 0;
+  uint32_t timestamp_valid_bits_ = 0;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties props_{};
+  VkPhysicalDeviceMemoryProperties mem_props_{};
+  DeviceInfo info_;
+  bool validation_ = false;
+  mutable std::mutex messages_mutex_;
+  std::vector<std::string> messages_;
+};
+
+}  // namespace glintlab::core

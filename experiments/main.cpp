@@ -1,0 +1,2 @@
+// glintlab command line (being wired up).
+int main() { return 0; }
