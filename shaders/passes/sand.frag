@@ -1,0 +1,36 @@
+#version 450
+// The sand material as a surface pass: gathers the macro surface, the sun and
+// the sky's hemisphere term (Kajs eq. 4.2, from SH irradiance) and calls
+// sand_shade(). Writes the weighted sample for accumulation; alpha = coverage.
+#include "common/frame.glsl"
+#include "sand/sand_params.glsl"
+layout(set = 0, binding = 1, std140) uniform MaterialUBO { SandParams sand_params; };
+layout(set = 0, binding = 2) uniform sampler2D env_map;
+#include "common/environment.glsl"
+#include "sand/sand.glsl"
+
+layout(location = 0) in vec3 v_x_obj;
+layout(location = 1) in vec3 v_x;
+layout(location = 2) in vec3 v_n;
+layout(location = 3) in vec4 v_t;
+layout(location = 4) in vec2 v_uv;
+layout(location = 0) out vec4 out_color;
+
+void main() {
+  vec3 to_eye = frame_camera_pos.xyz - v_x;
+  float dist = length(to_eye);
+  vec3 wo = dist > 0.0 ? to_eye / dist : vec3(0.0, 1.0, 0.0);
+  // Interpolated normals can shrink; a degenerate one falls back to the
+  // direction of the viewer. Seen from behind, the surface's other side faces us.
+  float nl = length(v_n);
+  vec3 n = nl > 1e-20 ? v_n / nl : wo;
+  if (!gl_FrontFacing) n = -n;
+
+  SandSurface s = SandSurface(v_x_obj, v_x, n, wo, dist);
+  SandLight l = SandLight(frame_sun_dir.xyz, frame_sun_L.rgb, env_irradiance(n));
+  // Not clamped: every frame is scanned for NaN/Inf/negative values, and a
+  // clamp here would hide a defect of the material.
+  vec3 L = sand_shade(sand_params, s, l);
+  float w = sample_jitter_weight.z;
+  out_color = vec4(L * w, w);
+}
