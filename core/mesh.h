@@ -1,0 +1,75 @@
+// Procedural meshes of the scene: plane, wavy "dune" plane, (layered) sphere and a ridged-noise dune
+// height field (DESIGN.md "Scene"). CPU only; the renderer uploads `vertices`/`indices` as they are.
+//
+// Conventions shared by every mesh:
+//  - object space, right-handed, +Y up; lengths in scene units;
+//  - triangles are counter-clockwise seen from outside/above: for indices (a, b, c) the geometric
+//    normal cross(p_b - p_a, p_c - p_a) points to the same side as the vertex normals. With the
+//    Y-flipped projection of core/camera.h this is VK_FRONT_FACE_COUNTER_CLOCKWISE;
+//  - `normal` is unit; `tangent.xyz` is unit, orthogonal to `normal` and points along d(position)/du;
+//    `tangent.w` = ±1 such that bitangent = tangent.w * cross(normal, tangent.xyz) points along
+//    d(position)/dv (MikkTSpace convention);
+//  - uv in [0, 1]^2.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glintlab {
+class JsonReader;
+}
+
+namespace glintlab::core {
+
+// Vertex-buffer / std430 friendly: exactly these four members in this order, 48 bytes.
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec4 tangent;
+  glm::vec2 uv;
+};
+static_assert(sizeof(Vertex) == 48, "Vertex must stay 48 bytes (vertex buffer layout)");
+
+struct Mesh {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // triangle list
+  glm::vec3 bounds_min{0.0f};
+  glm::vec3 bounds_max{0.0f};
+};
+
+// What to build. JSON keys (all but "type" optional; keys that do not apply to the type are errors):
+//   "type": "plane" | "wavy" | "sphere" | "dunes"
+//   "size": edge length of plane/wavy/dunes, diameter of the sphere   (default 10)
+//   "tessellation": quads per edge (plane/wavy/dunes) or sphere slices (stacks = slices/2)  (default 128)
+//   wavy:   "amplitude" A (default 1), "wavelength" λ (default = size): y = A sin(2π x / λ)
+//   sphere: "layers" (default 1), "layer_spacing" (default 0.1): the thesis' layered sphere
+//           (Kajs sec. 2.2) = `layers` concentric shells, shell k with radius r (1 - k·layer_spacing)
+//   dunes:  "amplitude" (default 1.5), "wavelength" (base feature size, default 8), "octaves"
+//           (default 4), "lacunarity" (default 2), "gain" (default 0.5), "seed" (default 1)
+struct MeshSpec {
+  std::string type = "plane";
+  float size = 10.0f;
+  int tessellation = 128;
+  float amplitude = 1.0f;
+  float wavelength = 10.0f;
+  int layers = 1;
+  float layer_spacing = 0.1f;
+  int octaves = 4;
+  float lacunarity = 2.0f;
+  float gain = 0.5f;
+  uint32_t seed = 1;
+
+  static MeshSpec from_json(JsonReader& r);  // validates; calls r.finish()
+};
+
+// Throws std::invalid_argument for an unknown type or out-of-range parameters.
+Mesh build_mesh(const MeshSpec& spec);
+
+// Height y(x, z) of the surfaces that are height fields ("plane", "wavy", "dunes"); used by the
+// mesh builder and by tests/camera placement. Throws std::invalid_argument for "sphere".
+float height_field(const MeshSpec& spec, float x, float z);
+
+}  // namespace glintlab::core
