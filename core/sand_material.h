@@ -1,0 +1,117 @@
+// Parameters of the Kajs 2022 sand material (thesis chapter 4, Appendix A):
+// named parameters with the Appendix A defaults, presets, validated JSON
+// overrides, std140 packing for shaders/sand/sand_params.glsl, and the
+// compile-time pruning defines of shaders/sand/sand.glsl.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace glintlab {
+class JsonReader;
+}
+
+namespace glintlab::core {
+
+// std140 mirror of `struct SandParams` in shaders/sand/sand_params.glsl.
+struct SandParamsGPU {
+  float palette[8][4];  // rgb = C[i], a = 1
+  float I_glints[4];    // rgb, a = 0
+  float SSS, R_s, T, R_t;
+  float sigma_g, P, noise_scale, ior;
+  float scattering, absorption, sigma_on, sig_a;
+  float sig_b, pad0, pad1, pad2;
+  uint32_t appendix_compat, fresnel_half_vector, glint_model, pad3;
+};
+static_assert(sizeof(SandParamsGPU) == 224, "SandParamsGPU must match the std140 GLSL struct");
+static_assert(offsetof(SandParamsGPU, I_glints) == 128, "std140 offset");
+static_assert(offsetof(SandParamsGPU, SSS) == 144, "std140 offset");
+static_assert(offsetof(SandParamsGPU, sigma_g) == 160, "std140 offset");
+static_assert(offsetof(SandParamsGPU, scattering) == 176, "std140 offset");
+static_assert(offsetof(SandParamsGPU, sig_b) == 192, "std140 offset");
+static_assert(offsetof(SandParamsGPU, appendix_compat) == 208, "std140 offset");
+static_assert(offsetof(SandParamsGPU, glint_model) == 216, "std140 offset");
+
+// Bits of SandParams::appendix_compat (= SAND_COMPAT_* in sand_params.glsl):
+// Appendix A behaviour where it differs from chapter 4 (shaders/sand/DIFFERENCES.md).
+enum SandCompat : uint32_t {
+  kSandCompatRandNormalized = 1u,    // "rand_normalized"
+  kSandCompatIntensityXi1 = 2u,      // "intensity_xi1"
+  kSandCompatGateXi1 = 4u,           // "gate_xi1"
+  kSandCompatGlintSky = 8u,          // "glint_sky"
+  kSandCompatFresnelAbs = 16u,       // "fresnel_abs"
+  kSandCompatOrenNayarWorld = 32u,   // "oren_nayar_world"
+  kSandCompatAll = 63u,
+};
+
+// What a run needs from the material; shader_defines() compiles out the rest.
+struct SandFeatures {
+  double min_distance = 0.0;  // smallest camera distance of any shaded point in the run
+  double max_distance = std::numeric_limits<double>::infinity();  // largest
+  std::string debug_output = "final";  // one of SandParams::debug_output_names()
+};
+
+struct SandParams {
+  using RGB = std::array<double, 3>;
+  // Grain palette C[8] (eq. 4.4); Appendix A default: all white.
+  std::array<RGB, 8> palette{{{1, 1, 1}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1},
+                              {1, 1, 1}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}}};
+  // Colour space the palette and I_glints are given in (OCIO name in the
+  // project config); the renderer converts to its working space before pack().
+  std::string palette_space = "lin_rec709";
+  double SSS = 0.8;           // subsurface scattering multiplier, [0, 1]
+  double R_s = 0.12;          // specular roughness, [0, 1]
+  double T = 0.8;             // transmission, [0, 1]
+  double R_t = 0.2;           // transmission roughness, [0, 1]
+  double glint_sigma = 1e-5;  // Gaussian sigma of eq. 4.17, [1e-6, 1]
+  double P = 0.1;             // porosity factor, [0, 1]
+  double noise_scale = 2000;  // grain cells per object unit, [1, 1e6]
+  RGB I_glints{1, 1, 1};      // glint gain I_glints (eq. 4.20), [0, 1e6] per channel
+  double scattering = 0.2;    // eq. 4.12, [0, 1]
+  double absorption = 0.8;    // eq. 4.13, [0, 1]
+  double oren_nayar_sigma = 0.1;  // eq. 4.34, radians, [0, pi/2]
+  double sigmoid_a = 2.0;     // eq. 4.37 stretch, (0, 1e4]
+  double sigmoid_b = 1.3;     // eq. 4.37 shift, distance units, [0, 1e7]
+  double ior = 1.458;         // grain IOR (silica), [1, 3]
+  std::string glint_model = "kajs";  // "kajs" | "none"
+  std::string fresnel_half_vector = "macro_normal";  // "macro_normal" | "light_view"
+  uint32_t appendix_compat = 0;  // SandCompat bits; 0 = chapter 4 everywhere
+
+  // "thesis-default" (Appendix A defaults), "thesis-hdri-match" (thesis
+  // sec. 6.2, Fig. 6.5/6.8), "thesis-appendix-a" (defaults + every
+  // Appendix A behaviour bit). Unknown name -> ConfigError listing the names.
+  static SandParams preset(const std::string& name);
+  static std::vector<std::string> preset_names();
+  // {"preset": "...", <any parameter as override>}; every value range-checked,
+  // unknown keys rejected (ConfigError naming file, key and allowed range).
+  // palette: array of 8 [r,g,b]; I_glints: [r,g,b]; appendix_compat: "none",
+  // "all" or an array of bit names (compat_names()).
+  static SandParams from_json(JsonReader& r);
+  // Throws ConfigError("sand: <name>: ...") on any out-of-range value.
+  void validate() const;
+  SandParamsGPU pack() const;
+
+  static std::vector<std::string> compat_names();  // bit i = 1 << i
+  static std::vector<std::string> debug_output_names();
+  // Value of SAND_DEBUG for a debug output name; ConfigError if unknown.
+  static int debug_output_define(const std::string& name);
+};
+
+// Sigmoid of eq. 4.37 in a stable form (the value the shader's sig() has).
+double sand_sigmoid(double x, double a, double b);
+
+// Threshold below which a transition weight counts as "never reached".
+constexpr double kSandPruneWeight = 1e-4;
+
+// Defines ("NAME=VALUE") for shaders/sand/sand.glsl: SAND_TRANSMISSION=0
+// when T = 0; SAND_GLINTS=0 when glint_model is "none" or I_glints = 0;
+// SAND_FAR=0 when sig(max_distance) < 1e-4; SAND_CLOSE=0 when
+// 1 - sig(min_distance) < 1e-4; SAND_DEBUG=<value>. A debug output keeps
+// both fields (no close/far pruning).
+std::vector<std::string> shader_defines(const SandParams& params, const SandFeatures& needs);
+
+}  // namespace glintlab::core

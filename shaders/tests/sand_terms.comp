@@ -1,0 +1,95 @@
+#version 450
+// GPU harness for the sand material terms (tests/core_sand_material.cpp):
+// one input record of SAND_IN_STRIDE floats per item (surface, light and a
+// full parameter set), one output record of SAND_OUT_STRIDE floats with
+// every term of SandTerms, the sand_shade() result (under the SAND_* defines
+// of the run) and the Frisvad basis of the macro normal.
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 64) in;
+layout(std430, set = 0, binding = 0) readonly buffer Inputs { float inputs[]; };
+layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float outputs[]; };
+layout(push_constant) uniform Push { uint count; };
+
+#include "sand/sand.glsl"
+
+#define SAND_IN_STRIDE 64u
+#define SAND_OUT_STRIDE 72u
+
+vec3 in3(uint b) { return vec3(inputs[b], inputs[b + 1u], inputs[b + 2u]); }
+void out1(uint b, float v) { outputs[b] = v; }
+void out3(uint b, vec3 v) { outputs[b] = v.x; outputs[b + 1u] = v.y; outputs[b + 2u] = v.z; }
+
+void main() {
+  uint id = gl_GlobalInvocationID.x;
+  if (id >= count) return;
+  uint i = id * SAND_IN_STRIDE;
+  SandSurface s;
+  s.x_obj = in3(i + 0u);
+  s.x = s.x_obj;
+  s.n = in3(i + 3u);
+  s.wo = in3(i + 6u);
+  s.dist = inputs[i + 9u];
+  SandLight l;
+  l.wi = in3(i + 10u);
+  l.L_i = in3(i + 13u);
+  l.L_sky_omega = in3(i + 16u);
+  SandParams p;
+  p.SSS = inputs[i + 19u];
+  p.R_s = inputs[i + 20u];
+  p.T = inputs[i + 21u];
+  p.R_t = inputs[i + 22u];
+  p.sigma_g = inputs[i + 23u];
+  p.P = inputs[i + 24u];
+  p.noise_scale = inputs[i + 25u];
+  p.ior = inputs[i + 26u];
+  p.scattering = inputs[i + 27u];
+  p.absorption = inputs[i + 28u];
+  p.sigma_on = inputs[i + 29u];
+  p.sig_a = inputs[i + 30u];
+  p.sig_b = inputs[i + 31u];
+  p.pad0 = 0.0; p.pad1 = 0.0; p.pad2 = 0.0; p.pad3 = 0u;
+  p.appendix_compat = uint(inputs[i + 32u]);
+  p.fresnel_half_vector = uint(inputs[i + 33u]);
+  p.glint_model = uint(inputs[i + 34u]);
+  p.I_glints = vec4(in3(i + 35u), 0.0);
+  for (uint k = 0u; k < 8u; ++k) p.palette[k] = vec4(in3(i + 40u + 3u * k), 1.0);
+
+  SandTerms r = sand_terms(p, s, l);
+  uint o = id * SAND_OUT_STRIDE;
+  out3(o + 0u, r.xi);
+  out3(o + 3u, r.xi_pm);
+  out1(o + 6u, float(r.face));
+  out3(o + 7u, r.m);
+  out1(o + 10u, float(r.palette_index));
+  out3(o + 11u, r.rho_m);
+  out3(o + 14u, r.rho_n);
+  out1(o + 17u, r.I_min);
+  out1(o + 18u, r.rho_m_intensity);
+  out1(o + 19u, r.rho_n_intensity);
+  out1(o + 20u, r.f_s);
+  out1(o + 21u, r.f_e);
+  out1(o + 22u, r.F_Rs);
+  out1(o + 23u, r.G_Rs);
+  out1(o + 24u, r.f);
+  out1(o + 25u, r.gdf);
+  out1(o + 26u, r.g);
+  out3(o + 27u, r.L_d);
+  out3(o + 30u, r.L_f);
+  out3(o + 33u, r.L_g);
+  out3(o + 36u, r.L_s);
+  out1(o + 39u, r.T_ext);
+  out1(o + 40u, r.t);
+  out3(o + 41u, r.L_t);
+  out1(o + 44u, r.L_oren);
+  out3(o + 45u, r.L_brdf);
+  out3(o + 48u, r.L_far);
+  out3(o + 51u, r.L_close);
+  out1(o + 54u, r.sig);
+  out3(o + 55u, r.L_final);
+  out3(o + 58u, sand_shade(p, s, l));
+  vec3 b1, b2;
+  frisvad_basis(s.n, b1, b2);
+  out3(o + 61u, b1);
+  out3(o + 64u, b2);
+  for (uint k = 67u; k < SAND_OUT_STRIDE; ++k) out1(o + k, 0.0);
+}
