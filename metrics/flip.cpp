@@ -1,0 +1,451 @@
+#include "metrics/flip.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "metrics/delta_e_itp.h"
+#include "metrics/error_metrics.h"
+
+namespace glintlab::metrics {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// FLIP 2020 constants (colour pipeline, feature pipeline, final combination).
+constexpr double kQc = 0.7;          // q_c: exponent on the HyAB distance
+constexpr double kPc = 0.4;          // p_c: breakpoint of the error redistribution, fraction of c_max
+constexpr double kPt = 0.95;         // p_t: error value at the breakpoint
+constexpr double kQf = 0.5;          // q_f: exponent on the feature difference
+constexpr double kFeatureW = 0.082;  // w: peak-to-trough width (degrees) of the edge detector; sigma = w / 2
+constexpr double kToneTarget = 0.85; // HDR-FLIP: tone-mapped value of the brightest / median pixel
+
+// FLIP 2020 spatial CSF filters: S(x) = a1 sqrt(pi/b1) exp(-pi^2 x^2 / b1) + a2 sqrt(pi/b2) exp(-pi^2 x^2 / b2),
+// x in degrees, per YCxCz channel (achromatic, red-green, blue-yellow).
+struct Csf {
+  double a1, b1, a2, b2;
+};
+constexpr Csf kCsfA{1.0, 0.0047, 0.0, 1e-5};
+constexpr Csf kCsfRG{1.0, 0.0053, 0.0, 1e-5};
+constexpr Csf kCsfBY{34.1, 0.04, 13.5, 0.025};
+constexpr double kCsfMaxB = 0.04;  // largest b over all channels: sets the common kernel radius
+
+// ACES fit with the 0.6 pre-exposure folded in (HDR-FLIP): (k0 x^2 + k1 x + k2) / (k3 x^2 + k4 x + k5).
+constexpr double kAces[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0.0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
+
+using Plane = std::vector<float>;
+
+// Linear Rec.709 <-> XYZ and FLIP's reference white (the XYZ of RGB (1, 1, 1)).
+struct Rec709 {
+  Mat3 rgb2xyz, xyz2rgb;
+  double white[3];
+};
+
+const Rec709& rec709() {
+  static const Rec709 c = [] {
+    Rec709 r;
+    r.rgb2xyz = rgb_to_xyz_npm(0.64, 0.33, 0.30, 0.60, 0.15, 0.06, 0.3127, 0.3290);
+    r.xyz2rgb = mat3_inverse(r.rgb2xyz);
+    for (int i = 0; i < 3; ++i) r.white[i] = r.rgb2xyz[3 * i] + r.rgb2xyz[3 * i + 1] + r.rgb2xyz[3 * i + 2];
+    return r;
+  }();
+  return c;
+}
+
+double lab_f(double t) {  // CIE L*a*b* companding
+  constexpr double d = 6.0 / 29.0;
+  return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+}
+
+// Linear RGB in [0,1] -> Hunt-adjusted L*a*b* (FLIP 2020, perceptually uniform colour space:
+// a* and b* scaled by 0.01 L*).
+void hunt_lab(double r, double g, double b, double out[3]) {
+  const Rec709& c = rec709();
+  const Mat3& M = c.rgb2xyz;
+  const double fx = lab_f((M[0] * r + M[1] * g + M[2] * b) / c.white[0]);
+  const double fy = lab_f((M[3] * r + M[4] * g + M[5] * b) / c.white[1]);
+  const double fz = lab_f((M[6] * r + M[7] * g + M[8] * b) / c.white[2]);
+  const double L = 116.0 * fy - 16.0;
+  out[0] = L;
+  out[1] = 0.01 * L * 500.0 * (fx - fy);
+  out[2] = 0.01 * L * 200.0 * (fy - fz);
+}
+
+double hyab(const double p[3], const double q[3]) {  // FLIP 2020: HyAB = |ΔL| + ||Δ(a, b)||
+  return std::abs(p[0] - q[0]) + std::hypot(p[1] - q[1], p[2] - q[2]);
+}
+
+// c_max: HyAB^q_c between Hunt-adjusted green and blue, the most distant pair in the RGB cube.
+double flip_cmax() {
+  static const double cmax = [] {
+    double g[3], b[3];
+    hunt_lab(0, 1, 0, g);
+    hunt_lab(0, 0, 1, b);
+    return std::pow(hyab(g, b), kQc);
+  }();
+  return cmax;
+}
+
+// ---------------------------------------------------------------- separable filters
+struct Kernel {
+  std::vector<float> w;  // 2r + 1 taps, correlation order (tap j multiplies offset j - r)
+  int radius() const { return int(w.size() - 1) / 2; }
+};
+
+float flush(double v) { return std::abs(v) < 1e-30 ? 0.0f : float(v); }  // no denormal taps
+
+struct FlipKernels {
+  // Colour: per channel one or two normalised 1D Gaussians with weights (the 2D kernel
+  // w1 g1(x) g1(y) + w2 g2(x) g2(y), normalised to sum 1 over the square support as the paper).
+  Kernel a, rg, by1, by2;
+  float by_w1 = 1.0f, by_w2 = 0.0f;
+  // Features: normalised Gaussian g, first derivative dg and second derivative ddg (positive taps
+  // sum to 1, negative taps to -1 in the 2D kernel, which factorises as dg(x) g(y)).
+  Kernel g, dg, ddg;
+};
+
+// exp(-pi^2 (x / ppd)^2 / b) on [-r, r], normalised; returns the unnormalised sum in *sum.
+Kernel csf_gaussian(double b, int r, double ppd, double* sum) {
+  std::vector<double> v(2 * r + 1);
+  double s = 0.0;
+  for (int x = -r; x <= r; ++x) {
+    const double d = x / ppd;
+    v[x + r] = std::exp(-kPi * kPi * d * d / b);
+    s += v[x + r];
+  }
+  *sum = s;
+  // Drop outer tap pairs below 1e-9 of the sum (far below float resolution of the result); the
+  // narrow achromatic and red-green kernels share the blue-yellow radius otherwise.
+  int t = 0;
+  while (t < r && v[t] / s < 1e-9) ++t;
+  Kernel k;
+  for (int i = t; i <= 2 * r - t; ++i) k.w.push_back(flush(v[i] / s));
+  return k;
+}
+
+FlipKernels make_kernels(double ppd) {
+  FlipKernels K;
+  // FLIP 2020: radius = ceil(3 sqrt(b_max / (2 pi^2)) ppd).
+  const int r = int(std::ceil(3.0 * std::sqrt(kCsfMaxB / (2.0 * kPi * kPi)) * ppd));
+  double s1 = 0.0, s2 = 0.0;
+  K.a = csf_gaussian(kCsfA.b1, r, ppd, &s1);   // a2 = 0 for the achromatic channel
+  K.rg = csf_gaussian(kCsfRG.b1, r, ppd, &s1);  // a2 = 0 for red-green
+  K.by1 = csf_gaussian(kCsfBY.b1, r, ppd, &s1);
+  K.by2 = csf_gaussian(kCsfBY.b2, r, ppd, &s2);
+  const double m1 = kCsfBY.a1 * std::sqrt(kPi / kCsfBY.b1) * s1 * s1;
+  const double m2 = kCsfBY.a2 * std::sqrt(kPi / kCsfBY.b2) * s2 * s2;
+  K.by_w1 = float(m1 / (m1 + m2));
+  K.by_w2 = float(m2 / (m1 + m2));
+
+  // FLIP 2020 feature detection: sigma = w/2 degrees, radius ceil(3 sigma) pixels.
+  const double sd = 0.5 * kFeatureW * ppd;
+  const int rf = int(std::ceil(3.0 * sd));
+  std::vector<double> g(2 * rf + 1), dg(2 * rf + 1), ddg(2 * rf + 1);
+  double sg = 0.0, dpos = 0.0, ddpos = 0.0, ddneg = 0.0;
+  for (int x = -rf; x <= rf; ++x) {
+    const double e = std::exp(-double(x) * x / (2.0 * sd * sd));
+    g[x + rf] = e;
+    dg[x + rf] = -x * e;
+    ddg[x + rf] = (double(x) * x / (sd * sd) - 1.0) * e;
+    sg += e;
+    if (dg[x + rf] > 0) dpos += dg[x + rf];
+    if (ddg[x + rf] > 0) ddpos += ddg[x + rf];
+    if (ddg[x + rf] < 0) ddneg -= ddg[x + rf];
+  }
+  for (int i = 0; i <= 2 * rf; ++i) {
+    K.g.w.push_back(flush(g[i] / sg));
+    K.dg.w.push_back(dpos > 0 ? flush(dg[i] / dpos) : 0.0f);  // negative taps sum to -dpos by symmetry
+    const double n = ddg[i] > 0 ? ddpos : ddneg;
+    K.ddg.w.push_back(n > 0 ? flush(ddg[i] / n) : 0.0f);
+  }
+  return K;
+}
+
+// d[x] (+)= k s[x]. Written in blocks of 8 with restrict pointers so that it vectorises at -O2
+// (GCC's very-cheap cost model needs a fixed trip count and no aliasing checks).
+inline void axpy(float* __restrict d, const float* __restrict s, float k, int n, bool first) {
+  int x = 0;
+  if (first) {
+    for (; x + 8 <= n; x += 8)
+      for (int i = 0; i < 8; ++i) d[x + i] = k * s[x + i];
+    for (; x < n; ++x) d[x] = k * s[x];
+  } else {
+    for (; x + 8 <= n; x += 8)
+      for (int i = 0; i < 8; ++i) d[x + i] += k * s[x + i];
+    for (; x < n; ++x) d[x] += k * s[x];
+  }
+}
+
+// Horizontal correlation with replicated borders.
+void conv_rows(const Plane& src, Plane& dst, int w, int h, const Kernel& k, std::vector<float>& pad) {
+  const int r = k.radius();
+  pad.resize(std::size_t(w) + 2 * r);
+  dst.resize(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y) {
+    const float* s = src.data() + std::size_t(y) * w;
+    for (int i = 0; i < r; ++i) {
+      pad[i] = s[0];
+      pad[std::size_t(w) + r + i] = s[w - 1];
+    }
+    std::copy(s, s + w, pad.begin() + r);
+    float* d = dst.data() + std::size_t(y) * w;
+    for (int j = 0; j <= 2 * r; ++j) axpy(d, pad.data() + j, k.w[j], w, j == 0);
+  }
+}
+
+// Vertical correlation with replicated borders.
+void conv_cols(const Plane& src, Plane& dst, int w, int h, const Kernel& k) {
+  const int r = k.radius();
+  dst.resize(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y) {
+    float* d = dst.data() + std::size_t(y) * w;
+    for (int j = -r; j <= r; ++j) {
+      const int yy = std::clamp(y + j, 0, h - 1);
+      axpy(d, src.data() + std::size_t(yy) * w, k.w[j + r], w, j == -r);
+    }
+  }
+}
+
+// Per-image state of LDR-FLIP: filtered Hunt-adjusted Lab and feature magnitudes.
+struct Prepared {
+  Plane L, A, B, edge, point;
+};
+
+struct Work {
+  Plane yc, cx, cz, ylum, t0, t1, t2, t3, t4;
+  std::vector<float> pad;
+};
+
+// src: linear sRGB (first three channels). LDR (exposure_scale <= 0): clamped to [0, 1]; HDR: scaled by
+// exposure_scale = 2^c and tone mapped (HDR-FLIP), which also lands in [0, 1].
+void prepare(const Image& src, double exposure_scale, const FlipKernels& K, Work& W, Prepared& P) {
+  const int w = src.width, h = src.height;
+  const Rec709& c = rec709();
+  const Mat3& M = c.rgb2xyz;
+  const std::size_t n = std::size_t(w) * h;
+  W.yc.resize(n);
+  W.cx.resize(n);
+  W.cz.resize(n);
+  W.ylum.resize(n);
+  // FLIP 2020: linear RGB -> XYZ -> YCxCz (opponent space, relative to the reference white).
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* p = src.data.data() + i * src.channels;
+    double r, g, b;
+    if (exposure_scale > 0.0) {
+      r = flip_aces_tonemap(exposure_scale * p[0]);
+      g = flip_aces_tonemap(exposure_scale * p[1]);
+      b = flip_aces_tonemap(exposure_scale * p[2]);
+    } else {
+      r = std::isnan(p[0]) ? p[0] : std::clamp(double(p[0]), 0.0, 1.0);
+      g = std::isnan(p[1]) ? p[1] : std::clamp(double(p[1]), 0.0, 1.0);
+      b = std::isnan(p[2]) ? p[2] : std::clamp(double(p[2]), 0.0, 1.0);
+    }
+    const double x = (M[0] * r + M[1] * g + M[2] * b) / c.white[0];
+    const double y = (M[3] * r + M[4] * g + M[5] * b) / c.white[1];
+    const double z = (M[6] * r + M[7] * g + M[8] * b) / c.white[2];
+    W.yc[i] = float(116.0 * y - 16.0);
+    W.cx[i] = float(500.0 * (x - y));
+    W.cz[i] = float(200.0 * (y - z));
+    W.ylum[i] = float(y);  // feature input: (Y' + 16) / 116 = Y / Y_n in [0, 1]
+  }
+  // Colour pipeline, spatial filtering with the CSFs (separable Gaussians).
+  conv_rows(W.yc, W.t0, w, h, K.a, W.pad);
+  conv_cols(W.t0, W.yc, w, h, K.a);
+  conv_rows(W.cx, W.t0, w, h, K.rg, W.pad);
+  conv_cols(W.t0, W.cx, w, h, K.rg);
+  conv_rows(W.cz, W.t0, w, h, K.by1, W.pad);
+  conv_cols(W.t0, W.t1, w, h, K.by1);
+  conv_rows(W.cz, W.t0, w, h, K.by2, W.pad);
+  conv_cols(W.t0, W.t2, w, h, K.by2);
+  P.L.resize(n);
+  P.A.resize(n);
+  P.B.resize(n);
+  const Mat3& Mi = c.xyz2rgb;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double cz = double(K.by_w1) * W.t1[i] + double(K.by_w2) * W.t2[i];
+    // YCxCz -> XYZ -> linear RGB, clamped to the RGB cube.
+    const double y = (W.yc[i] + 16.0) / 116.0;
+    const double X = (y + W.cx[i] / 500.0) * c.white[0], Y = y * c.white[1], Z = (y - cz / 200.0) * c.white[2];
+    const double r = std::clamp(Mi[0] * X + Mi[1] * Y + Mi[2] * Z, 0.0, 1.0);
+    const double g = std::clamp(Mi[3] * X + Mi[4] * Y + Mi[5] * Z, 0.0, 1.0);
+    const double b = std::clamp(Mi[6] * X + Mi[7] * Y + Mi[8] * Z, 0.0, 1.0);
+    double lab[3];
+    hunt_lab(r, g, b, lab);
+    P.L[i] = float(lab[0]);
+    P.A[i] = float(lab[1]);
+    P.B[i] = float(lab[2]);
+  }
+  // Feature pipeline: edge (first derivative) and point (second derivative) detectors on Y / Y_n.
+  conv_rows(W.ylum, W.t0, w, h, K.dg, W.pad);
+  conv_rows(W.ylum, W.t1, w, h, K.ddg, W.pad);
+  conv_rows(W.ylum, W.t2, w, h, K.g, W.pad);
+  conv_cols(W.t0, W.t3, w, h, K.g);   // edge x
+  conv_cols(W.t2, W.t4, w, h, K.dg);  // edge y
+  P.edge.resize(n);
+  for (std::size_t i = 0; i < n; ++i) P.edge[i] = std::sqrt(W.t3[i] * W.t3[i] + W.t4[i] * W.t4[i]);
+  conv_cols(W.t1, W.t3, w, h, K.g);    // point x
+  conv_cols(W.t2, W.t4, w, h, K.ddg);  // point y
+  P.point.resize(n);
+  for (std::size_t i = 0; i < n; ++i) P.point[i] = std::sqrt(W.t3[i] * W.t3[i] + W.t4[i] * W.t4[i]);
+}
+
+// FLIP 2020 final error: ΔE_c^(1 - ΔE_f). Writes into out (or keeps the maximum when take_max).
+void combine(const Prepared& t, const Prepared& r, float* out, bool take_max) {
+  const double cmax = flip_cmax();
+  const double pccmax = kPc * cmax;
+  const std::size_t n = t.L.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    // Colour: redistribute HyAB^q_c to [0, 1] (p_t at p_c c_max).
+    const double dL = double(t.L[i]) - r.L[i], da = double(t.A[i]) - r.A[i], db = double(t.B[i]) - r.B[i];
+    const double hy = std::abs(dL) + std::sqrt(da * da + db * db);  // HyAB
+    if (hy == 0.0 && t.edge[i] == r.edge[i] && t.point[i] == r.point[i]) {  // 0^(1 - 0) = 0
+      if (!take_max) out[i] = 0.0f;
+      continue;
+    }
+    const double e = std::pow(hy, kQc);
+    double dEc = e < pccmax ? (kPt / pccmax) * e : kPt + (e - pccmax) / (cmax - pccmax) * (1.0 - kPt);
+    dEc = std::min(dEc, 1.0);  // c_max is the largest HyAB in the RGB cube; this only absorbs rounding
+    // Features: (max(|Δedge|, |Δpoint|) / sqrt 2)^q_f in [0, 1].
+    const double df = std::max(std::abs(double(t.edge[i]) - r.edge[i]), std::abs(double(t.point[i]) - r.point[i]));
+    static_assert(kQf == 0.5, "the sqrt implements q_f = 0.5");
+    const double dEf = std::sqrt(std::min(df / std::sqrt(2.0), 1.0));  // q_f = 0.5
+    const float v = float(std::pow(dEc, 1.0 - dEf));
+    if (!take_max) out[i] = v;
+    else if (v > out[i] || std::isnan(v)) out[i] = v;
+  }
+}
+
+void check_ppd(double ppd, const char* who) {
+  if (!(ppd > 0.0) || !std::isfinite(ppd))
+    throw std::invalid_argument(std::string(who) + ": pixels per degree must be finite and > 0, got " + std::to_string(ppd));
+}
+
+}  // namespace
+
+double flip_pixels_per_degree(double distance_m, double monitor_width_m, double monitor_width_px) {
+  return distance_m * (monitor_width_px / monitor_width_m) * kPi / 180.0;
+}
+
+double flip_aces_tonemap(double x) {
+  if (std::isnan(x)) return x;
+  x = std::clamp(x, 0.0, 1e30);  // negative -> 0; +inf stays finite (limit k0/k3 > 1 -> clamps to 1)
+  const double y = (kAces[0] * x * x + kAces[1] * x + kAces[2]) / (kAces[3] * x * x + kAces[4] * x + kAces[5]);
+  return std::clamp(y, 0.0, 1.0);
+}
+
+Image xyz_to_linear_srgb(const Image& xyz) {
+  if (xyz.channels < 3) throw std::invalid_argument("xyz_to_linear_srgb: image needs >= 3 channels (X, Y, Z)");
+  const Mat3& M = rec709().xyz2rgb;
+  Image rgb(xyz.width, xyz.height, 3);
+  for (std::size_t i = 0; i < xyz.pixel_count(); ++i) {
+    const float* p = xyz.data.data() + i * xyz.channels;
+    for (int c = 0; c < 3; ++c)
+      rgb.data[3 * i + c] = float(M[3 * c] * p[0] + M[3 * c + 1] * p[1] + M[3 * c + 2] * p[2]);
+  }
+  return rgb;
+}
+
+HdrFlipExposures hdr_flip_exposures(const Image& ref_xyz) {
+  // x_max: positive root of (k0 - t k3) x^2 + (k1 - t k4) x + (k2 - t k5) = 0, t = 0.85.
+  const double t = kToneTarget;
+  const double c0 = (kAces[1] - kAces[4] * t) / (kAces[0] - kAces[3] * t);
+  const double c1 = (kAces[2] - kAces[5] * t) / (kAces[0] - kAces[3] * t);
+  const double x_max = -0.5 * c0 + std::sqrt(0.25 * c0 * c0 - c1);
+
+  const Image rgb = xyz_to_linear_srgb(ref_xyz);
+  const Mat3& M = rec709().rgb2xyz;
+  std::vector<double> Y;
+  Y.reserve(rgb.pixel_count());
+  for (std::size_t i = 0; i < rgb.pixel_count(); ++i) {
+    const double r = std::max(0.0f, rgb.data[3 * i]), g = std::max(0.0f, rgb.data[3 * i + 1]),
+                 b = std::max(0.0f, rgb.data[3 * i + 2]);
+    const double y = M[3] * r + M[4] * g + M[5] * b;
+    if (std::isfinite(y)) Y.push_back(y);
+  }
+  HdrFlipExposures e;
+  if (Y.empty()) return e;
+  const double y_hi = *std::max_element(Y.begin(), Y.end());
+  if (!(y_hi > 0.0)) return e;
+  auto median = [](std::vector<double>& v) {  // numpy percentile 50: mean of the middle two when even
+    const std::size_t m = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + m, v.end());
+    const double hi = v[m];
+    if (v.size() % 2) return hi;
+    return 0.5 * (*std::max_element(v.begin(), v.begin() + m) + hi);
+  };
+  double y_lo = median(Y);
+  if (!(y_lo > 0.0)) {
+    std::vector<double> pos;
+    for (double y : Y)
+      if (y > 0.0) pos.push_back(y);
+    y_lo = median(pos);
+  }
+  e.start = std::log2(x_max / y_hi);
+  e.stop = std::log2(x_max / y_lo);
+  e.count = std::max(2, int(std::ceil(e.stop - e.start)));
+  return e;
+}
+
+Image ldr_flip_map_linear_srgb(const Image& test_rgb, const Image& ref_rgb, double ppd) {
+  require_same_size(test_rgb, ref_rgb, "ldr_flip_map");
+  check_ppd(ppd, "ldr_flip_map");
+  const int w = test_rgb.width, h = test_rgb.height;
+  Image out(w, h, 1);
+  if (out.pixel_count() == 0) return out;
+  const FlipKernels K = make_kernels(ppd);
+  Work W;
+  Prepared pt, pr;
+  prepare(test_rgb, 0.0, K, W, pt);
+  prepare(ref_rgb, 0.0, K, W, pr);
+  combine(pt, pr, out.data.data(), false);
+  return out;
+}
+
+Image ldr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd) {
+  require_same_size(test_xyz, ref_xyz, "ldr_flip_map");
+  return ldr_flip_map_linear_srgb(xyz_to_linear_srgb(test_xyz), xyz_to_linear_srgb(ref_xyz), ppd);
+}
+
+Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd) {
+  require_same_size(test_xyz, ref_xyz, "hdr_flip_map");
+  check_ppd(ppd, "hdr_flip_map");
+  const int w = test_xyz.width, h = test_xyz.height;
+  Image out(w, h, 1, 0.0f);
+  if (out.pixel_count() == 0) return out;
+  const Image t_rgb = xyz_to_linear_srgb(test_xyz), r_rgb = xyz_to_linear_srgb(ref_xyz);
+  const HdrFlipExposures ex = hdr_flip_exposures(ref_xyz);
+  const FlipKernels K = make_kernels(ppd);
+  const double step = (ex.stop - ex.start) / std::max(ex.count - 1, 1);
+  // Exposures are independent: spread them over the cores, each worker keeping its own maximum.
+  const int workers = std::max(1, std::min<int>(ex.count, int(std::thread::hardware_concurrency())));
+  std::vector<std::vector<float>> partial(workers);
+  std::atomic<int> next{0};
+  auto work = [&](int id) {
+    Work W;
+    Prepared pt, pr;
+    std::vector<float>& mx = partial[id];
+    mx.assign(out.pixel_count(), 0.0f);
+    for (int i = next++; i < ex.count; i = next++) {
+      const double scale = std::exp2(ex.start + i * step);
+      prepare(t_rgb, scale, K, W, pt);
+      prepare(r_rgb, scale, K, W, pr);
+      combine(pt, pr, mx.data(), true);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int id = 1; id < workers; ++id) pool.emplace_back(work, id);
+  work(0);
+  for (std::thread& th : pool) th.join();
+  for (const std::vector<float>& mx : partial)
+    for (std::size_t j = 0; j < mx.size(); ++j)
+      if (mx[j] > out.data[j] || std::isnan(mx[j])) out.data[j] = mx[j];
+  return out;
+}
+
+}  // namespace glintlab::metrics

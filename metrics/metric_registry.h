@@ -1,0 +1,41 @@
+// Name -> per-pixel metric, the one entry point the `compare` command and the experiment runner use.
+// Inputs are relative CIE XYZ (D65, Y = 1 diffuse white), >= 3 channels, same size.
+//   "deltaE2000"  ΔE00 (Sharma et al. 2005) per pixel; unit "ΔE00"; mean/max over pixels.
+//   "deltaEITP"   ΔE_ITP (ITU-R BT.2124), Y = 1 -> itp_luminance_nits cd/m^2; unit "ΔE_ITP".
+//   "flip"        HDR-FLIP (flip_hdr, default) or LDR-FLIP at flip_ppd px/deg; unit "FLIP" in [0, 1].
+//   "psnr"        map = per-pixel squared error of Y; mean = PSNR of Y in dB with peak psnr_peak (+inf for
+//                 identical images); max = max squared error of Y; unit "dB".
+//   "relative"    |Y_t - Y_r| / (max(Y_r, 0) + 0.01) per pixel; unit "relative" (dimensionless).
+// mean and max propagate NaN (a NaN anywhere in the map makes them NaN).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace glintlab::metrics {
+
+std::vector<std::string> metric_names();  // {"deltaE2000", "deltaEITP", "flip", "psnr", "relative"}
+
+struct MetricOptions {
+  double itp_luminance_nits = 100;
+  double flip_ppd = 67.0;
+  bool flip_hdr = true;
+  double psnr_peak = 1.0;
+};
+
+struct MetricResult {
+  std::string name;
+  std::string unit;
+  double mean;
+  double max;
+  Image map;  // 1 channel, same size as the inputs
+};
+
+// Throws std::invalid_argument for an unknown name (the message lists the allowed names) and for
+// mismatched sizes (the message states both sizes).
+MetricResult evaluate_metric(const std::string& name, const Image& test_xyz, const Image& ref_xyz,
+                             const MetricOptions& = {});
+
+}  // namespace glintlab::metrics

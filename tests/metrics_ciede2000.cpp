@@ -1,0 +1,127 @@
+// CIEDE2000 against the published test data of Sharma, Wu & Dalal 2005 (Table 1) and CIELAB basics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "metrics/ciede2000.h"
+
+using namespace glintlab;
+using namespace glintlab::metrics;
+
+namespace {
+struct SharmaPair {
+  double L1, a1, b1, L2, a2, b2, dE;
+};
+// Sharma, Wu & Dalal, Color Res. Appl. 30(1), 2005, Table 1 (all 34 pairs).
+const SharmaPair kSharma[34] = {
+    {50.0000, 2.6772, -79.7751, 50.0000, 0.0000, -82.7485, 2.0425},
+    {50.0000, 3.1571, -77.2803, 50.0000, 0.0000, -82.7485, 2.8615},
+    {50.0000, 2.8361, -74.0200, 50.0000, 0.0000, -82.7485, 3.4412},
+    {50.0000, -1.3802, -84.2814, 50.0000, 0.0000, -82.7485, 1.0000},
+    {50.0000, -1.1848, -84.8006, 50.0000, 0.0000, -82.7485, 1.0000},
+    {50.0000, -0.9009, -85.5211, 50.0000, 0.0000, -82.7485, 1.0000},
+    {50.0000, 0.0000, 0.0000, 50.0000, -1.0000, 2.0000, 2.3669},
+    {50.0000, -1.0000, 2.0000, 50.0000, 0.0000, 0.0000, 2.3669},
+    {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0009, 7.1792},
+    {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0010, 7.1792},
+    {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0011, 7.2195},
+    {50.0000, 2.4900, -0.0010, 50.0000, -2.4900, 0.0012, 7.2195},
+    {50.0000, -0.0010, 2.4900, 50.0000, 0.0009, -2.4900, 4.8045},
+    {50.0000, -0.0010, 2.4900, 50.0000, 0.0010, -2.4900, 4.8045},
+    {50.0000, -0.0010, 2.4900, 50.0000, 0.0011, -2.4900, 4.7461},
+    {50.0000, 2.5000, 0.0000, 50.0000, 0.0000, -2.5000, 4.3065},
+    {50.0000, 2.5000, 0.0000, 73.0000, 25.0000, -18.0000, 27.1492},
+    {50.0000, 2.5000, 0.0000, 61.0000, -5.0000, 29.0000, 22.8977},
+    {50.0000, 2.5000, 0.0000, 56.0000, -27.0000, -3.0000, 31.9030},
+    {50.0000, 2.5000, 0.0000, 58.0000, 24.0000, 15.0000, 19.4535},
+    {50.0000, 2.5000, 0.0000, 50.0000, 3.1736, 0.5854, 1.0000},
+    {50.0000, 2.5000, 0.0000, 50.0000, 3.2972, 0.0000, 1.0000},
+    {50.0000, 2.5000, 0.0000, 50.0000, 1.8634, 0.5757, 1.0000},
+    {50.0000, 2.5000, 0.0000, 50.0000, 3.2592, 0.3350, 1.0000},
+    {60.2574, -34.0099, 36.2677, 60.4626, -34.1751, 39.4387, 1.2644},
+    {63.0109, -31.0961, -5.8663, 62.8187, -29.7946, -4.0864, 1.2630},
+    {61.2901, 3.7196, -5.3901, 61.4292, 2.2480, -4.9620, 1.8731},
+    {35.0831, -44.1164, 3.7933, 35.0232, -40.0716, 1.5901, 1.8645},
+    {22.7233, 20.0904, -46.6940, 23.0331, 14.9730, -42.5619, 2.0373},
+    {36.4612, 47.8580, 18.3852, 36.2715, 50.5065, 21.2231, 1.4146},
+    {90.8027, -2.0831, 1.4410, 91.1528, -1.6435, 0.0447, 1.4441},
+    {90.9257, -0.5406, -0.9208, 88.6381, -0.8985, -0.7239, 1.5381},
+    {6.7747, -0.2908, -2.4247, 5.8714, -0.0985, -2.2286, 0.6377},
+    {2.0776, 0.0795, -1.1350, 0.9033, -0.0636, -0.5514, 0.9082},
+};
+}  // namespace
+
+TEST(Ciede2000, SharmaTable1AllPairsBothOrders) {
+  for (int i = 0; i < 34; ++i) {
+    const SharmaPair& p = kSharma[i];
+    const Lab c1{p.L1, p.a1, p.b1}, c2{p.L2, p.a2, p.b2};
+    // The table is rounded to 4 decimals: the exact value is within 5e-5 of it.
+    EXPECT_NEAR(ciede2000(c1, c2), p.dE, 1e-4) << "pair " << i + 1;
+    EXPECT_NEAR(ciede2000(c2, c1), p.dE, 1e-4) << "pair " << i + 1 << " swapped";
+  }
+}
+
+TEST(Ciede2000, SymmetricAndZeroOnIdentity) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> L(0.0, 100.0), ab(-120.0, 120.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Lab c1{L(rng), ab(rng), ab(rng)}, c2{L(rng), ab(rng), ab(rng)};
+    const double d12 = ciede2000(c1, c2), d21 = ciede2000(c2, c1);
+    EXPECT_NEAR(d12, d21, 1e-9 * (1.0 + d12));
+    EXPECT_GT(d12, 0.0);
+    EXPECT_EQ(ciede2000(c1, c1), 0.0);
+  }
+}
+
+TEST(Ciede2000, ParametricFactorsScaleLightnessTerm) {
+  // Pure lightness difference: ΔE00 = |ΔL'| / (kL S_L), so kL = 2 halves it.
+  const Lab c1{50, 0, 0}, c2{60, 0, 0};
+  EXPECT_NEAR(ciede2000(c1, c2, 2.0), 0.5 * ciede2000(c1, c2), 1e-12);
+  // At L_bar = 55: S_L = 1 + 0.015 * 25 / sqrt(45).
+  EXPECT_NEAR(ciede2000(c1, c2), 10.0 / (1.0 + 0.015 * 25.0 / std::sqrt(45.0)), 1e-12);
+}
+
+TEST(Ciede2000, XyzToLabKnownValues) {
+  Lab w = xyz_to_lab(0.95047, 1.0, 1.08883);
+  EXPECT_NEAR(w.L, 100.0, 1e-9);
+  EXPECT_NEAR(w.a, 0.0, 1e-9);
+  EXPECT_NEAR(w.b, 0.0, 1e-9);
+  Lab k = xyz_to_lab(0, 0, 0);
+  EXPECT_NEAR(k.L, 0.0, 1e-12);
+  // Middle grey Y = 0.18 (CIE 15 cube-root branch).
+  EXPECT_NEAR(xyz_to_lab(0.18 * 0.95047, 0.18, 0.18 * 1.08883).L, 116.0 * std::cbrt(0.18) - 16.0, 1e-9);
+  // Linear branch below (6/29)^3: L* = 903.3 Y (CIE: (29/3)^3 Y).
+  EXPECT_NEAR(xyz_to_lab(0.001 * 0.95047, 0.001, 0.001 * 1.08883).L, std::pow(29.0 / 3.0, 3) * 0.001, 1e-9);
+  // sRGB red primary (XYZ = first column of the sRGB matrix): the widely published L*a*b* (53.24, 80.09, 67.20).
+  Lab red = xyz_to_lab(0.4124564, 0.2126729, 0.0193339);
+  EXPECT_NEAR(red.L, 53.24, 0.01);
+  EXPECT_NEAR(red.a, 80.09, 0.01);
+  EXPECT_NEAR(red.b, 67.20, 0.01);
+}
+
+TEST(Ciede2000, MapMatchesScalarAndChecksSize) {
+  Image t(3, 2, 4, 0.0f), r(3, 2, 4, 0.0f);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) {
+      const float v = 0.1f + 0.2f * x + 0.3f * y;
+      float* p = t.px(x, y);
+      p[0] = 0.95047f * v; p[1] = v; p[2] = 1.08883f * v * 0.5f; p[3] = 1.0f;
+      float* q = r.px(x, y);
+      q[0] = 0.95047f * v * 0.9f; q[1] = v; q[2] = 1.08883f * v; q[3] = 0.0f;  // alpha must be ignored
+    }
+  const Image m = ciede2000_map(t, r);
+  ASSERT_EQ(m.channels, 1);
+  ASSERT_EQ(m.width, 3);
+  ASSERT_EQ(m.height, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) {
+      const float* p = t.px(x, y);
+      const float* q = r.px(x, y);
+      EXPECT_NEAR(m.at(x, y, 0), ciede2000(xyz_to_lab(p[0], p[1], p[2]), xyz_to_lab(q[0], q[1], q[2])), 1e-4);
+      EXPECT_GT(m.at(x, y, 0), 1.0f);
+    }
+  EXPECT_THROW(ciede2000_map(t, Image(2, 2, 4)), std::invalid_argument);
+  EXPECT_THROW(ciede2000_map(Image(3, 2, 2), Image(3, 2, 2)), std::invalid_argument);
+}
