@@ -486,11 +486,16 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     for (auto& g : groups)
       log << "  " << g->name << ": " << g->rendered << " rendered (" << std::setprecision(1) << g->gpu_ms.mean()
           << " ms/frame GPU at " << spec.reference.grid * spec.reference.grid << " spp), " << g->cached << " cached\n";
+  int status = 0;
   if (defects) {
     log << "error: some frames had NaN, Inf or negative pixels (see frames.csv)\n";
-    return 1;
+    status = 1;
   }
-  return 0;
+  if (ctx.validation_enabled() && ctx.validation_message_count() > 0) {
+    log << "error: the Vulkan validation layer reported " << ctx.validation_message_count() << " message(s)\n";
+    status = 1;
+  }
+  return status;
 }
 
 }  // namespace glintlab
