@@ -85,6 +85,11 @@ Image2D::Image2D(const VkContext& ctx, uint32_t width, uint32_t height, VkFormat
     ai.memoryTypeIndex = ctx.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     vk_check(vkAllocateMemory(ctx.device(), &ai, nullptr, &memory_), "vkAllocateMemory(image)");
     vk_check(vkBindImageMemory(ctx.device(), image_, memory_, 0), "vkBindImageMemory");
+    // Transfer-only images get no view (Vulkan forbids it).
+    const VkImageUsageFlags viewable = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    if ((usage & viewable) == 0) return;
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image_;
     vi.viewType = VK_IMAGE_VIEW_TYPE_2D;

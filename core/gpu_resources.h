@@ -36,7 +36,8 @@ class Buffer {
   void* mapped_ = nullptr;
 };
 
-// A 2D optimal-tiling image in device-local memory with one view over all mips.
+// A 2D optimal-tiling image in device-local memory with one view over all
+// mips (none for transfer-only images).
 class Image2D {
  public:
   Image2D() = default;

@@ -3,6 +3,7 @@
 // harness and exact readback.
 #include "core/compute_harness.h"
 #include "core/content_hash.h"
+#include "core/gpu_resources.h"
 #include "core/shader_compiler.h"
 #include "core/vk_context.h"
 #include "tests/vk_test_util.h"
@@ -10,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cstring>
 #include <fstream>
 
 namespace fs = std::filesystem;
@@ -107,4 +109,28 @@ TEST(ContentHash, BoundariesMatter) {
   EXPECT_NE(a.hex(), b.hex());
   EXPECT_EQ(core::hash_hex("x"), core::hash_hex("x"));
   EXPECT_EQ(core::hash_hex("x").size(), 32u);
+}
+
+TEST(Readback, HalfFloatTargetsAreWidenedExactly) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  // RGBA16F, odd size: cleared to values that are exact in half precision
+  // (including a subnormal and a negative), read back through the padded pitch.
+  core::Image2D img(ctx, 37, 11, VK_FORMAT_R16G16B16A16_SFLOAT,
+                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  const float v[4] = {0.5f, -3.25f, 65504.0f, 5.9604645e-08f};
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    core::transition(cmd, img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                     VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkClearColorValue c;
+    std::memcpy(c.float32, v, sizeof v);
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &c, 1, &range);
+  });
+  EXPECT_EQ(core::padded_row_pitch(37, VK_FORMAT_R16G16B16A16_SFLOAT), 512u);  // 296 bytes padded to 256
+  auto px = core::read_back(ctx, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  ASSERT_EQ(px.size(), size_t(37) * 11 * 4);
+  for (size_t i = 0; i < px.size(); ++i) ASSERT_EQ(px[i], v[i % 4]) << i;
 }
