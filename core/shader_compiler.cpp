@@ -150,20 +150,29 @@ static Source load(const std::string& root, const std::string& path, const std::
   return Source{p.lexically_normal().string(), read_file(p), preamble(defines)};
 }
 
+// A glslang shader with its source, preamble and includer set up, ready to
+// preprocess (for the hash) or parse (to compile).
+struct Prepared {
+  Source src;
+  const char* text = nullptr;
+  const char* name = nullptr;
+  int len = 0;
+  glslang::TShader sh;
+  Includer includer;
+  Prepared(const std::string& root, const std::string& path, ShaderStage stage, const std::vector<std::string>& defines)
+      : src(load(root, path, defines)), sh(to_glslang(stage)), includer(root) {
+    setup(sh, src, &text, &name, &len);
+  }
+};
+
 std::string ShaderCompiler::source_hash(const std::string& path, ShaderStage stage,
                                         const std::vector<std::string>& defines) {
-  Source src = load(shader_dir_, path, defines);
-  glslang::TShader sh(to_glslang(stage));
-  const char* text;
-  const char* name;
-  int len;
-  setup(sh, src, &text, &name, &len);
-  Includer includer(shader_dir_);
+  Prepared p(shader_dir_, path, stage, defines);
   std::string expanded;
-  if (!sh.preprocess(GetDefaultResources(), 450, ENoProfile, false, false, EShMsgDefault, &expanded, includer))
-    throw ShaderCompileError(format_log(sh.getInfoLog(), src.path, stage_name(stage)));
+  if (!p.sh.preprocess(GetDefaultResources(), 450, ENoProfile, false, false, EShMsgDefault, &expanded, p.includer))
+    throw ShaderCompileError(format_log(p.sh.getInfoLog(), p.src.path, stage_name(stage)));
   ContentHash h;
-  h.add(std::string_view("glslang-spv1.5-vk1.2")).add(int64_t(stage)).add(src.preamble).add(expanded);
+  h.add(std::string_view("glslang-spv1.5-vk1.2")).add(int64_t(stage)).add(p.src.preamble).add(expanded);
   return h.hex();
 }
 
@@ -185,18 +194,13 @@ CompiledShader ShaderCompiler::compile(const std::string& path, ShaderStage stag
     out.spirv.clear();  // corrupt entry: fall through and rebuild it
   }
 
-  Source src = load(shader_dir_, path, defines);
-  glslang::TShader sh(to_glslang(stage));
-  const char* text;
-  const char* name;
-  int len;
-  setup(sh, src, &text, &name, &len);
-  Includer includer(shader_dir_);
+  Prepared p(shader_dir_, path, stage, defines);
+  const Source& src = p.src;
   EShMessages msgs = EShMessages(EShMsgSpvRules | EShMsgVulkanRules);
-  if (!sh.parse(GetDefaultResources(), 450, false, msgs, includer))
-    throw ShaderCompileError(format_log(sh.getInfoLog(), src.path, stage_name(stage)));
+  if (!p.sh.parse(GetDefaultResources(), 450, false, msgs, p.includer))
+    throw ShaderCompileError(format_log(p.sh.getInfoLog(), src.path, stage_name(stage)));
   glslang::TProgram program;
-  program.addShader(&sh);
+  program.addShader(&p.sh);
   if (!program.link(msgs)) throw ShaderCompileError(format_log(program.getInfoLog(), src.path, stage_name(stage)));
   glslang::SpvOptions opt;
   opt.validate = false;
