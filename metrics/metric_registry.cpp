@@ -60,9 +60,11 @@ MetricResult evaluate_metric(const std::string& name, const Image& test_xyz, con
   } else if (name == "psnr") {
     r.unit = "dB";
     r.map = squared_error_map(test_xyz, ref_xyz);
-    double mse_f = 0.0;
-    mean_max(r.map, &mse_f, &r.max);
+    double mse_f = 0.0, worst_sq = 0.0;
+    mean_max(r.map, &mse_f, &worst_sq);
     r.mean = psnr_from_mse(mean_squared_error_y(test_xyz, ref_xyz), opt.psnr_peak);  // MSE in double
+    // In dB like the mean: the PSNR of the worst pixel (the lowest per-pixel PSNR).
+    r.max = psnr_from_mse(worst_sq, opt.psnr_peak);
     return r;
   } else {  // "relative"
     r.unit = "relative";

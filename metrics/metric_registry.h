@@ -4,7 +4,8 @@
 //   "deltaEITP"   ΔE_ITP (ITU-R BT.2124), Y = 1 -> itp_luminance_nits cd/m^2; unit "ΔE_ITP".
 //   "flip"        HDR-FLIP (flip_hdr, default) or LDR-FLIP at flip_ppd px/deg; unit "FLIP" in [0, 1].
 //   "psnr"        map = per-pixel squared error of Y; mean = PSNR of Y in dB with peak psnr_peak (+inf for
-//                 identical images); max = max squared error of Y; unit "dB".
+//                 identical images); max = PSNR of the worst pixel (the lowest per-pixel PSNR, so
+//                 mean and max are both dB); unit "dB".
 //   "relative"    |Y_t - Y_r| / (max(Y_r, 0) + 0.01) per pixel; unit "relative" (dimensionless).
 // mean and max propagate NaN (a NaN anywhere in the map makes them NaN).
 #pragma once

@@ -289,7 +289,7 @@ TEST(MetricRegistry, EveryMetricGivesAOneChannelMapAndZeroOnIdentity) {
     EXPECT_EQ(r.map.height, 16);
     if (n == "psnr") {
       EXPECT_EQ(r.mean, std::numeric_limits<double>::infinity());
-      EXPECT_EQ(r.max, 0.0);
+      EXPECT_EQ(r.max, std::numeric_limits<double>::infinity());  // worst pixel is exact too
       EXPECT_EQ(r.unit, "dB");
     } else {
       EXPECT_EQ(r.mean, 0.0) << n;
@@ -303,7 +303,7 @@ TEST(MetricRegistry, ValuesMatchTheUnderlyingMetrics) {
   set_y(t, 3, 4, 0.8f);
   const MetricResult p = evaluate_metric("psnr", t, r, MetricOptions{100, 67.0, true, 2.0});
   EXPECT_NEAR(p.mean, 10.0 * std::log10(4.0 / (0.09 / 256.0)), 1e-4);
-  EXPECT_NEAR(p.max, 0.09, 1e-6);
+  EXPECT_NEAR(p.max, 10.0 * std::log10(4.0 / 0.09), 1e-4);  // worst-pixel PSNR, dB
   EXPECT_NEAR(p.map.at(3, 4, 0), 0.09, 1e-6);
   const MetricResult rel = evaluate_metric("relative", t, r);
   EXPECT_NEAR(rel.max, 0.3 / 0.51, 1e-5);
@@ -321,4 +321,13 @@ TEST(MetricRegistry, ValuesMatchTheUnderlyingMetrics) {
   EXPECT_GT(f.max, 0.0);
   EXPECT_LE(f.max, 1.0);
   EXPECT_EQ(f.unit, "FLIP");
+}
+
+TEST(MetricRegistry, PsnrMeanAndMaxAreBothDecibels) {
+  glintlab::Image ref(4, 4, 3, 0.5f), test = ref;
+  test.at(1, 2, 1) += 0.1f;  // one pixel's Y off by 0.1: MSE = 0.01 / 16
+  auto r = glintlab::metrics::evaluate_metric("psnr", test, ref);
+  EXPECT_NEAR(r.mean, 10.0 * std::log10(16.0 / 0.01), 1e-3);
+  EXPECT_NEAR(r.max, 10.0 * std::log10(1.0 / 0.01), 1e-3);  // the worst pixel alone
+  EXPECT_EQ(r.unit, "dB");
 }
