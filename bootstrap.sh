@@ -10,6 +10,7 @@ PKGS=(
   libopencolorio-dev opencolorio-tools
   libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libxxhash-dev ninja-build
+  fonts-dejavu-core
 )
 missing=()
 for p in "${PKGS[@]}"; do

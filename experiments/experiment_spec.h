@@ -13,7 +13,8 @@
 //                  "debug": "final" | <debug output>, "material": {<overrides>}} ],
 //   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
 //   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],
-//   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "Standard"}
+//   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "Standard",
+//              "contact_sheet": false, "contact_sheet_columns": 8}
 // }
 #pragma once
 
@@ -51,6 +52,8 @@ struct OutputSpec {
   int every = 1;  // save images of every n-th frame (metrics are computed for all)
   std::string display = "sRGB";
   std::string view = "Standard";
+  bool contact_sheet = false;  // DIR/contact_sheet.png: rows = variants (+ reference), columns = saved frames
+  int contact_sheet_columns = 8;  // at most this many saved frames per row
 };
 
 struct ExperimentSpec {

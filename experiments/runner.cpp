@@ -6,6 +6,7 @@
 #include "core/renderer.h"
 #include "core/shader_compiler.h"
 #include "core/vk_context.h"
+#include "experiments/contact_sheet.h"
 #include "experiments/experiment_spec.h"
 #include "experiments/reference_cache.h"
 #include "experiments/scene_setup.h"
@@ -162,6 +163,15 @@ ShaderConfig make_shader(const core::SandParams& params, const std::string& debu
   return c;
 }
 
+// Display-encoded preview through the OCIO display/view, opaque (alpha is
+// coverage in the render, which a preview should not show as transparency).
+Image preview(const Image& scene_linear, const ExperimentSpec& spec, const metrics::ColorManager& cm) {
+  Image out = cm.display(scene_linear, spec.working_space, spec.output.display, spec.output.view);
+  if (out.channels == 4)
+    for (size_t i = 3; i < out.data.size(); i += 4) out.data[i] = 1.0f;
+  return out;
+}
+
 fs::path frame_path(const fs::path& dir, int frame, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
@@ -262,6 +272,17 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     groups.push_back(std::move(g));
   }
 
+  // Contact sheet rows: one per reference group and variant, in run order.
+  std::map<std::string, std::vector<SheetTile>> sheet;
+  std::vector<std::string> sheet_order;
+  auto add_tile = [&](const std::string& row, int k, const Image& scene_linear) {
+    if (!spec.output.contact_sheet) return;
+    if (!sheet.count(row)) sheet_order.push_back(row);
+    auto& tiles = sheet[row];
+    if (int(tiles.size()) < spec.output.contact_sheet_columns)
+      tiles.push_back({row + " f" + std::to_string(k), preview(scene_linear, spec, cm)});
+  };
+
   // ---- CSV header
   std::vector<std::string> header = {"variant", "frame", "time_s", "spp", "gpu_ms", "wall_ms", "nan_px", "inf_px",
                                      "negative_px"};
@@ -330,6 +351,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
           fs::create_directories(out_dir / group->name);
           metrics::write_exr(frame_path(out_dir / group->name, k, "exr").string(), *ref, chroma);
         }
+        if (k % spec.output.every == 0) add_tile(group->name, k, *ref);
         ref_xyz = cm.to_xyz_d65(*ref, spec.working_space);
       }
 
@@ -398,10 +420,9 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
           fs::path dir = out_dir / v.name;
           fs::create_directories(dir);
           if (spec.output.exr) metrics::write_exr(frame_path(dir, k, "exr").string(), fo.color, chroma);
-          if (spec.output.png)
-            metrics::write_png(frame_path(dir, k, "png").string(),
-                               cm.display(fo.color, spec.working_space, spec.output.display, spec.output.view));
+          if (spec.output.png) metrics::write_png(frame_path(dir, k, "png").string(), preview(fo.color, spec, cm));
         }
+        if (k % spec.output.every == 0) add_tile(v.name, k, fo.color);
       }
       std::ostringstream detail;
       detail << std::fixed << std::setprecision(1);
@@ -413,6 +434,12 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   }
   csv.close();
   fs::rename(csv_partial, csv_path);
+  if (spec.output.contact_sheet && !sheet_order.empty()) {
+    std::vector<std::vector<SheetTile>> rows;
+    for (const auto& name : sheet_order) rows.push_back(std::move(sheet[name]));
+    metrics::write_png((out_dir / "contact_sheet.png").string(), make_contact_sheet(rows));
+    log << "wrote " << (out_dir / "contact_sheet.png").string() << "\n";
+  }
 
   // ---- summary.json
   nlohmann::json summary;
