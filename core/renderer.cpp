@@ -21,10 +21,16 @@ VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShader
   return s;
 }
 
-// Additive fp32 blending of weighted samples; depth test LESS (surface) or
-// LESS_OR_EQUAL without writes (sky at the far plane).
+// The three draws of one sample. Accumulating samples by additive blending is
+// only correct if each pixel receives exactly one fragment per sample, so the
+// surface is first drawn depth-only, then shaded with depth test EQUAL (only
+// the nearest fragment survives, whatever the draw order), then the sky fills
+// what is still at the far plane.
+enum class Draw { DepthPrepass, Shade, Sky };
+
 Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
-                                VkShaderModule fs, bool with_vertices, bool sky, int w, int h) {
+                                VkShaderModule fs, Draw draw, int w, int h) {
+  const bool with_vertices = draw != Draw::Sky;
   VkPipelineShaderStageCreateInfo stages[] = {stage_info(VK_SHADER_STAGE_VERTEX_BIT, vs),
                                               stage_info(VK_SHADER_STAGE_FRAGMENT_BIT, fs)};
   VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
@@ -58,22 +64,24 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = sky ? VK_FALSE : VK_TRUE;
-  ds.depthCompareOp = sky ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
+  ds.depthWriteEnable = draw == Draw::DepthPrepass ? VK_TRUE : VK_FALSE;
+  ds.depthCompareOp = draw == Draw::DepthPrepass ? VK_COMPARE_OP_LESS
+                      : draw == Draw::Shade      ? VK_COMPARE_OP_EQUAL
+                                                 : VK_COMPARE_OP_LESS_OR_EQUAL;
   VkPipelineColorBlendAttachmentState blend{};
-  blend.blendEnable = VK_TRUE;
+  blend.blendEnable = draw == Draw::DepthPrepass ? VK_FALSE : VK_TRUE;
   blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.colorBlendOp = VK_BLEND_OP_ADD;
   blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.alphaBlendOp = VK_BLEND_OP_ADD;
-  blend.colorWriteMask = 0xf;
+  blend.colorWriteMask = draw == Draw::DepthPrepass ? 0 : 0xf;
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   cb.attachmentCount = 1;
   cb.pAttachments = &blend;
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  ci.stageCount = 2;
+  ci.stageCount = draw == Draw::DepthPrepass ? 1 : 2;  // depth only: no fragment shader
   ci.pStages = stages;
   ci.pVertexInputState = &vi;
   ci.pInputAssemblyState = &ia;
@@ -209,13 +217,15 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, int width,
   CompiledShader fs = sc.compile(shader.fragment, ShaderStage::Fragment, shader.defines);
   fragment_hash_ = fs.source_hash;
   ShaderModule vsm = make_shader_module(ctx, vs.spirv), fsm = make_shader_module(ctx, fs.spirv);
-  surface_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), fsm.get(), true,
-                                             false, width, height);
+  depth_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), VK_NULL_HANDLE,
+                                           Draw::DepthPrepass, width, height);
+  surface_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), fsm.get(),
+                                             Draw::Shade, width, height);
   if (draw_sky_) {
     CompiledShader svs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
     CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment);
     ShaderModule svm = make_shader_module(ctx, svs.spirv), sfm = make_shader_module(ctx, sfs.spirv);
-    sky_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), svm.get(), sfm.get(), false, true,
+    sky_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), svm.get(), sfm.get(), Draw::Sky,
                                            width, height);
   }
 
@@ -276,9 +286,11 @@ FrameOutput SurfacePass::render(const FrameUniforms& frame, const std::vector<Sa
                               nullptr);
       vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                          sizeof(SamplePush), &s);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surface_pipeline_.get());
       vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero_offset);
       vkCmdBindIndexBuffer(cmd, scene_.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.get());
+      vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surface_pipeline_.get());
       vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
       if (draw_sky_) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_pipeline_.get());

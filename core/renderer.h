@@ -2,7 +2,9 @@
 // surface pass that draws it with one fragment shader (the sand material, a
 // debug/test shader, ...) into an RGBA32F target. A frame is the mean of one
 // draw per sample: one sample for a normal frame, N jittered samples for a
-// supersampled or reference frame (fp32 additive blending, box filter).
+// supersampled or reference frame (fp32 additive blending, box filter). Each
+// sample is a depth pre-pass, then shading with depth EQUAL, so exactly the
+// nearest surface is shaded and accumulated, whatever the draw order.
 #pragma once
 
 #include "core/gpu_resources.h"
@@ -109,7 +111,7 @@ class SurfacePass {
   Framebuffer framebuffer_;
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;
-  Pipeline surface_pipeline_, sky_pipeline_;
+  Pipeline depth_pipeline_, surface_pipeline_, sky_pipeline_;
   Buffer frame_ubo_, material_ubo_;
   DescriptorSet descriptors_;
   QueryPool queries_;

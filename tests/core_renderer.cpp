@@ -150,3 +150,56 @@ TEST(Renderer, JitteredSamplesAverageWithWeights) {
     }
   EXPECT_EQ(out.timings[0].pass, "reference");
 }
+
+TEST(Renderer, OnlyTheNearestOfOverlappingSurfacesIsAccumulated) {
+  // A layered sphere: two concentric shells seen through each other, four
+  // surfaces behind most pixels, drawn in mesh order (inner shell after the
+  // outer). Each sample must add exactly one fragment: coverage 1 and the
+  // colour of the nearest hit (fp64 ray-sphere), for 1 and for 9 samples.
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const int w = 96, h = 64;
+  core::MeshSpec spec;
+  spec.type = "sphere";
+  spec.size = 2.0f;  // radius 1
+  spec.tessellation = 192;
+  spec.layers = 2;
+  spec.layer_spacing = 0.3f;  // inner shell radius 0.7
+  core::Mesh mesh = core::build_mesh(spec);
+  core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
+  core::SurfacePass pass(ctx, scene, w, h, {"tests/analytic.frag", {}, {}}, /*draw_sky=*/false);
+  core::CameraState cam;
+  cam.position = {0.4f, 0.9f, 3.2f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.fov_y_deg = 50.0f;
+  glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
+  glm::dmat4 inv = glm::inverse(glm::dmat4(vp));
+  for (int n : {1, 3}) {
+    std::vector<core::SamplePush> samples;
+    auto offs = n == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(n, 3u);
+    for (size_t i = 0; i < offs.size(); ++i)
+      samples.push_back({core::projection(cam, w, h, offs[i]) * core::view_matrix(cam),
+                         {offs[i].x, offs[i].y, 1.0f / float(offs.size()), float(i)}});
+    auto out = pass.render(uniforms_for(vp, w, h, cam.position), samples);
+    int interior = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float* px = out.color.px(x, y);
+        ASSERT_LE(px[3], 1.0f + 1e-5f) << "more than one fragment accumulated at " << x << "," << y;
+        if (n != 1) continue;
+        double nx = (x + 0.5) / w * 2.0 - 1.0, ny = (y + 0.5) / h * 2.0 - 1.0;
+        glm::dvec4 a = inv * glm::dvec4(nx, ny, 0.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+        glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
+        double bq = glm::dot(o, d), c = glm::dot(o, o) - 1.0, disc = bq * bq - c;
+        if (disc < 0.05) continue;  // misses the outer shell or grazes its tessellated silhouette
+        glm::dvec3 X = o + (-bq - std::sqrt(disc)) * d;  // nearest hit: the outer shell
+        EXPECT_EQ(px[3], 1.0f) << x << "," << y;
+        EXPECT_NEAR(px[0], X.x, 5e-3) << x << "," << y;
+        EXPECT_NEAR(px[1], X.z, 5e-3) << x << "," << y;
+        ++interior;
+      }
+    if (n == 1) {
+      EXPECT_GT(interior, w * h / 8);
+    }
+  }
+}

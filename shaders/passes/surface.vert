@@ -15,11 +15,17 @@ layout(location = 3) out vec4 v_t;
 layout(location = 4) out vec2 v_uv;
 
 void main() {
-  vec4 x = frame_model * vec4(in_position, 1.0);
+  // The depth pre-pass and the shading pass run this shader in two pipelines
+  // and must get bit-identical depth (the shading pass tests EQUAL): `precise`
+  // forbids the compiler to contract or reorder the position arithmetic
+  // differently in each. (glslang's `invariant gl_Position` decorates a block
+  // member, which the SPIR-V validator rejects.)
+  precise vec4 x = frame_model * vec4(in_position, 1.0);
+  precise vec4 clip = sample_view_proj * x;
   v_x_obj = in_position;
   v_x = x.xyz;
   v_n = mat3(frame_normal_matrix) * in_normal;
   v_t = vec4(mat3(frame_model) * in_tangent.xyz, in_tangent.w);
   v_uv = in_uv;
-  gl_Position = sample_view_proj * x;
+  gl_Position = clip;
 }
