@@ -10,6 +10,7 @@
 
 #include "metrics/color_manager.h"
 #include "metrics/image_io.h"
+#include "metrics/measurement_space.h"
 #include "metrics/metric_registry.h"
 
 namespace glintlab {
@@ -64,9 +65,14 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     return 2;
   }
 
+  metrics::MetricOptions mo;
+  mo.itp_luminance_nits = o.itp_nits;
+  mo.display_view = o.display_view;
+  mo.flip_hdr = !o.flip_ldr;
   std::unique_ptr<metrics::ColorManager> cm;
   Image test_xyz, ref_xyz;
   try {
+    if (!o.display_view.empty()) (void)metrics::parse_display_view(o.display_view);
     cm = std::make_unique<metrics::ColorManager>(o.ocio_config.empty() ? metrics::ColorManager::default_config_path()
                                                                         : o.ocio_config);
     if (!o.space.empty()) (void)cm->canonical_name(o.space);  // unknown --space: error before reading
@@ -78,16 +84,14 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
           << o.ref << "' is " << size_str(ref) << "\n";
       return 2;
     }
-    test_xyz = cm->to_xyz_d65(test, input_space(*cm, o.space, test_tag, "test", o.test, err));
-    ref_xyz = cm->to_xyz_d65(ref, input_space(*cm, o.space, ref_tag, "reference", o.ref, err));
+    test_xyz = metrics::metric_xyz(*cm, test, input_space(*cm, o.space, test_tag, "test", o.test, err), mo);
+    ref_xyz = metrics::metric_xyz(*cm, ref, input_space(*cm, o.space, ref_tag, "reference", o.ref, err), mo);
   } catch (const std::exception& e) {
     err << "compare: " << e.what() << "\n";
     return 2;
   }
 
   // ---- metrics
-  metrics::MetricOptions mo;
-  mo.itp_luminance_nits = o.itp_nits;
   std::vector<metrics::MetricResult> results;
   try {
     for (const auto& n : names) results.push_back(metrics::evaluate_metric(n, test_xyz, ref_xyz, mo));

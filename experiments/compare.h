@@ -1,4 +1,5 @@
-// `glintlab compare TEST REF [--space NAME] [--metric NAME ...] [--map OUT.exr] [--json]`:
+// `glintlab compare TEST REF [--space NAME] [--metric NAME ...] [--map OUT.exr] [--json]
+//                  [--view DISPLAY/VIEW] [--flip-ldr] [--itp-nits N]`:
 // colour-managed image comparison in the manner of NVIDIA FLIP's command line (one obvious command,
 // a mean printed per metric, an error map on request). Both images go through OCIO to CIE XYZ D65
 // and every metric of the registry (metrics/metric_registry.h) is evaluated on them.
@@ -19,6 +20,8 @@ struct CompareOptions {
   bool json = false;                  // print {"metrics": {"<name>": {"mean": x, "max": y}}}
   std::string ocio_config;            // empty = ColorManager::default_config_path()
   double itp_nits = 100;              // luminance of scene value 1.0 for ΔE_ITP, cd/m^2
+  std::string display_view;           // "" = scene-referred; "DISPLAY/VIEW" = display-referred metrics
+  bool flip_ldr = false;              // LDR-FLIP instead of HDR-FLIP
 };
 
 // Runs the comparison; results on `out`, diagnostics on `err`.

@@ -1,6 +1,7 @@
 #include "experiments/experiment_spec.h"
 
 #include "core/json_check.h"
+#include "metrics/measurement_space.h"
 #include "metrics/metric_registry.h"
 
 #include <algorithm>
@@ -117,6 +118,21 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     }
   } else {
     s.metrics = allowed_metrics;
+  }
+
+  if (auto mo = r.optional_child("metric_options")) {
+    s.metric_options.display_view = mo->get_string("view", "");
+    if (!s.metric_options.display_view.empty()) {
+      try {
+        metrics::parse_display_view(s.metric_options.display_view);
+      } catch (const std::invalid_argument& e) {
+        mo->fail("view", std::string(e.what()) + " (or \"\" for scene-referred)");
+      }
+    }
+    s.metric_options.itp_luminance_nits = mo->get_number("itp_nits", 100.0, 1e-3, 1e5);
+    s.metric_options.flip_hdr = mo->get_enum("flip", "hdr", {"hdr", "ldr"}) == "hdr";
+    s.metric_options.flip_ppd = mo->get_number("flip_ppd", 67.0, 1.0, 1000.0);
+    mo->finish();
   }
 
   if (auto out = r.optional_child("output")) {

@@ -13,6 +13,8 @@
 //                  "debug": "final" | <debug output>, "material": {<overrides>}} ],
 //   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
 //   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],
+//   "metric_options": {"view": "" | "sRGB/Standard",  // "" = scene-referred per-pixel metrics
+//                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67},
 //   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "Standard",
 //              "contact_sheet": false, "contact_sheet_columns": 8}
 // }
@@ -22,6 +24,7 @@
 #include "core/environment.h"
 #include "core/mesh.h"
 #include "core/sand_material.h"
+#include "metrics/metric_registry.h"
 
 #include <nlohmann/json.hpp>
 
@@ -71,6 +74,7 @@ struct ExperimentSpec {
   std::vector<VariantSpec> variants;
   ReferenceSpec reference;
   std::vector<std::string> metrics;
+  metrics::MetricOptions metric_options;
   OutputSpec output;
   nlohmann::json source;  // the file's JSON as read (for hashing and the summary)
 

@@ -48,6 +48,9 @@ int main(int argc, char** argv) {
   compare->add_flag("--json", cmp.json, "print {\"metrics\": {name: {\"mean\", \"max\"}}}");
   compare->add_option("--ocio-config", cmp.ocio_config, "OCIO config (default: $OCIO, else the shipped config)");
   compare->add_option("--itp-nits", cmp.itp_nits, "cd/m^2 of Y = 1 for deltaEITP (default 100)");
+  compare->add_option("--view", cmp.display_view,
+                      "measure display-referred, as this OCIO DISPLAY/VIEW shows the images (e.g. sRGB/Standard)");
+  compare->add_flag("--flip-ldr", cmp.flip_ldr, "LDR-FLIP instead of HDR-FLIP");
 
   CLI::App* list = app.add_subcommand("list", "list built-in experiments, camera paths, presets, metrics, devices");
 

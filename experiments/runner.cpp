@@ -15,6 +15,7 @@
 #include "metrics/flicker.h"
 #include "metrics/glint_stats.h"
 #include "metrics/image_io.h"
+#include "metrics/measurement_space.h"
 #include "metrics/metric_registry.h"
 #include "metrics/pixel_scan.h"
 #include "metrics/pooled_error.h"
@@ -308,7 +309,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
 
   Stat metric_ms;
   bool defects = false;
-  metrics::MetricOptions mopt;
+  const metrics::MetricOptions& mopt = spec.metric_options;
   int total_steps = frames * int(groups.size());
   Progress progress(log, spec.name, total_steps);
   int step = 0;
@@ -319,7 +320,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
       core::FrameUniforms fu = frame_uniforms(cam, env, spec.width, spec.height, env_tex.mips_rgba.size());
 
       // -- reference of frame k (cached by content hash)
-      Image ref_xyz;
+      Image ref_xyz, ref_metric_xyz;  // scene-referred; what per-pixel metrics use
       bool ref_cached = false;
       if (group->pass) {
         core::ContentHash kh;
@@ -353,6 +354,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
         }
         if (k % spec.output.every == 0) add_tile(group->name, k, *ref);
         ref_xyz = cm.to_xyz_d65(*ref, spec.working_space);
+        ref_metric_xyz = mopt.display_view.empty() ? ref_xyz : metrics::metric_xyz(cm, *ref, spec.working_space, mopt);
       }
 
       // -- each variant of the group
@@ -380,8 +382,10 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
         if (measure) {
           auto m0 = Clock::now();
           Image test_xyz = cm.to_xyz_d65(fo.color, spec.working_space);
+          Image test_metric_xyz =
+              mopt.display_view.empty() ? test_xyz : metrics::metric_xyz(cm, fo.color, spec.working_space, mopt);
           for (const auto& name : spec.metrics) {
-            metrics::MetricResult r = metrics::evaluate_metric(name, test_xyz, ref_xyz, mopt);
+            metrics::MetricResult r = metrics::evaluate_metric(name, test_metric_xyz, ref_metric_xyz, mopt);
             run->metric[name].add(r.mean);
             row.push_back(csv_num(r.mean));
             row.push_back(csv_num(r.max));
@@ -453,6 +457,8 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   summary["working_space"] = spec.working_space;
   summary["ocio_config"] = cm.config_path();
   summary["measured"] = measure;
+  summary["per_pixel_metrics_referred"] =
+      mopt.display_view.empty() ? std::string("scene") : "display (" + mopt.display_view + ")";
   summary["units"] = {{"gpu_ms", "ms per frame, GPU timestamps"},
                       {"wall_ms", "ms per frame, submit to readback"},
                       {"deltaE2000", "CIEDE2000"},

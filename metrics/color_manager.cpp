@@ -184,6 +184,17 @@ Image ColorManager::display(const Image& scene, const std::string& from_space, c
   return out;
 }
 
+Image ColorManager::display_referred_xyz(const Image& scene, const std::string& from_space, const std::string& display,
+                                         const std::string& view) const {
+  Image out = this->display(scene, from_space, display, view);  // validates display and view
+  const char* encoded = impl_->config->getDisplayViewColorSpaceName(display.c_str(), view.c_str());
+  if (!encoded || !*encoded)
+    throw std::invalid_argument("view '" + view + "' of display '" + display + "' in OCIO config '" + config_path_ +
+                                "' names no display colour space to decode");
+  convert(out, encoded, kXyzD65DisplaySpace);
+  return out;
+}
+
 std::array<float, 8> ColorManager::chromaticities(const std::string& space) const {
   const std::string name = canonical_name(space);
   // ITU-R BT.709-6 table 1 (primaries, D65).

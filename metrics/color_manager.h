@@ -18,6 +18,7 @@ namespace glintlab::metrics {
 
 // Name of the scene-referred CIE XYZ D65 space of the shipped config.
 inline constexpr const char* kXyzD65Space = "CIE-XYZ-D65";
+inline constexpr const char* kXyzD65DisplaySpace = "CIE-XYZ-D65 display";  // the display reference
 
 class ColorManager {
  public:
@@ -55,6 +56,13 @@ class ColorManager {
   // in from_space, through the display/view of the config. Alpha is copied.
   Image display(const Image& scene, const std::string& from_space, const std::string& display,
                 const std::string& view) const;
+
+  // Display-referred CIE XYZ D65 (display white Y = 1; for Rec.2100-PQ, 1 = 100 cd/m^2) of a
+  // scene-referred image as display/view shows it: the view's encoded output decoded into the
+  // display reference ("CIE-XYZ-D65 display"). Display-referred metrics consume this: values the
+  // view clips compare as clipped. Alpha is copied.
+  Image display_referred_xyz(const Image& scene, const std::string& from_space, const std::string& display,
+                             const std::string& view) const;
 
   // CIE 1931 xy of the R, G, B primaries and white (Rx Ry Gx Gy Bx By Wx Wy) of the RGB encoding
   // a space stands for, for the OpenEXR `chromaticities` attribute. Known for lin_rec709 (ITU-R

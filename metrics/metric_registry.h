@@ -24,6 +24,10 @@ struct MetricOptions {
   double flip_ppd = 67.0;
   bool flip_hdr = true;
   double psnr_peak = 1.0;
+  // Where per-pixel metrics are measured: "" = scene-referred (CIE XYZ D65 of the scene values);
+  // "DISPLAY/VIEW" (e.g. "sRGB/Standard") = display-referred, as that OCIO view shows the images
+  // (see metric_xyz in metrics/measurement_space.h).
+  std::string display_view;
 };
 
 struct MetricResult {

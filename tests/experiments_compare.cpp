@@ -201,3 +201,33 @@ TEST_F(CompareTest, FileColourSpaceTagsAreHonoured) {
   ASSERT_EQ(run(o), 0) << err_.str();
   EXPECT_GT(json_out()["metrics"][de_]["mean"].get<double>(), 5.0);
 }
+
+TEST_F(CompareTest, DisplayReferredSeesWhatTheViewClips) {
+  // Test and reference differ only in values above 1, which the sRGB/Standard
+  // view clips: scene-referred they differ, display-referred they are equal.
+  Image ref(6, 4, 4, 1.0f), test = ref;
+  for (size_t i = 0; i < ref.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      ref.data[i * 4 + c] = 1.5f;
+      test.data[i * 4 + c] = 3.0f;
+    }
+  ref.at(0, 0, 1) = test.at(0, 0, 1) = 0.25f;  // an in-gamut pixel, identical in both
+  gm::write_exr(file("t.exr"), test, kRec709);
+  gm::write_exr(file("r.exr"), ref, kRec709);
+  CompareOptions o;
+  o.test = file("t.exr");
+  o.ref = file("r.exr");
+  o.metrics = {de_};
+  o.json = true;
+  ASSERT_EQ(run(o), 0) << err_.str();
+  EXPECT_GT(json_out()["metrics"][de_]["mean"].get<double>(), 5.0);
+  o.display_view = "sRGB/Standard";
+  ASSERT_EQ(run(o), 0) << err_.str();
+  EXPECT_NEAR(json_out()["metrics"][de_]["mean"].get<double>(), 0.0, 1e-3);
+  o.display_view = "sRGB";  // not DISPLAY/VIEW
+  EXPECT_EQ(run(o), 2);
+  EXPECT_NE(err_.str().find("DISPLAY/VIEW"), std::string::npos) << err_.str();
+  o.display_view = "sRGB/NoSuchView";
+  EXPECT_EQ(run(o), 2);
+  EXPECT_NE(err_.str().find("NoSuchView"), std::string::npos) << err_.str();
+}

@@ -245,3 +245,18 @@ TEST(ExperimentSpec, EveryShippedExperimentLoads) {
     }
   }
 }
+
+TEST(ExperimentSpec, MetricOptionsAreValidated) {
+  json j = minimal();
+  j["metric_options"] = {{"view", "sRGB"}};
+  expect_rejected(j, {"metric_options.view", "DISPLAY/VIEW"});
+  j["metric_options"] = {{"flip", "medium"}};
+  expect_rejected(j, {"metric_options.flip", "\"hdr\""});
+  j["metric_options"] = {{"itp_nits", -5}};
+  expect_rejected(j, {"metric_options.itp_nits"});
+  j["metric_options"] = {{"view", "sRGB/Standard"}, {"flip", "ldr"}, {"itp_nits", 203}};
+  ExperimentSpec s = ExperimentSpec::from_json(j, kFile);
+  EXPECT_EQ(s.metric_options.display_view, "sRGB/Standard");
+  EXPECT_FALSE(s.metric_options.flip_hdr);
+  EXPECT_EQ(s.metric_options.itp_luminance_nits, 203.0);
+}

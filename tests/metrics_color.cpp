@@ -278,3 +278,24 @@ TEST(ColorConfig, OcioEnvironmentOverride) {
   }
   fs::remove_all(dir);
 }
+
+TEST(ColorConfig, DisplayReferredXyzDecodesTheViewOutput) {
+  ColorManager cm(GLINTLAB_OCIO_CONFIG);
+  Image img(3, 1, 3);
+  img.data = {0.5f, 0.5f, 0.5f, 2.0f, 2.0f, 2.0f, 0.2f, 0.0f, 0.0f};
+  // sRGB/Standard clamps to [0, 1] and encodes; decoding gives back display XYZ:
+  // in-range values equal their scene XYZ, values above 1 clip to white.
+  Image d = cm.display_referred_xyz(img, "lin_rec709", "sRGB", "Standard");
+  Image s = cm.to_xyz_d65(img, "lin_rec709");
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(d.data[c], s.data[c], 1e-4) << c;
+    EXPECT_NEAR(d.data[6 + c], s.data[6 + c], 1e-4) << c;
+  }
+  EXPECT_NEAR(d.data[3], 0.950456, 1e-4);
+  EXPECT_NEAR(d.data[4], 1.0, 1e-4);
+  EXPECT_NEAR(d.data[5], 1.089058, 1e-4);
+  // The PQ display keeps HDR: scene 2.0 (200 cd/m^2) stays 2.0 x white.
+  Image p = cm.display_referred_xyz(img, "lin_rec709", "Rec.2100-PQ", "Standard");
+  EXPECT_NEAR(p.data[4], 2.0, 2e-3);
+  EXPECT_THROW(cm.display_referred_xyz(img, "lin_rec709", "sRGB", "Nope"), std::invalid_argument);
+}
