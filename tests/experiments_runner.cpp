@@ -3,6 +3,7 @@
 // (reuse, corruption detected and rebuilt), and bad input.
 #include "experiments/reference_cache.h"
 #include "experiments/runner.h"
+#include "metrics/image_io.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -158,4 +159,33 @@ TEST(ReferenceCache, RoundTripIsExactAndTruncationIsDetected) {
   EXPECT_FALSE(cache.load(key, &corrupt).has_value());
   EXPECT_TRUE(corrupt);
   EXPECT_FALSE(fs::exists(cache.path_of(key)));  // removed so it is rebuilt
+}
+
+TEST(Runner, StaticCameraGivesIdenticalFramesAndNoFlicker) {
+  // With a static camera every frame is the same picture: the reference is a
+  // fixed quadrature and SSAA a fixed pattern, so nothing may change between
+  // frames and the flicker ratio is exactly 1 (both sequences static).
+  fs::path dir = fresh_dir("static");
+  nlohmann::json j = nlohmann::json::parse(kTiny);
+  j["camera_path"] = {{"type", "static"}, {"fps", 30}, {"frames", 3}, {"position", {0.5, 1.5, 3.0}},
+                      {"target", {0, 0, 0}}, {"fov", 40}};
+  j["output"] = {{"exr", true}, {"png", false}, {"every", 1}};
+  std::ofstream(dir / "static.json") << j.dump();
+  RunOptions opt;
+  opt.experiment = (dir / "static.json").string();
+  opt.out_dir = (dir / "out").string();
+  opt.cache_dir = (dir / "cache").string();
+  opt.validation = true;
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(opt, log), 0) << log.str();
+  for (const char* d : {"reference", "no-aa", "ssaa"}) {
+    Image f0 = metrics::read_image((dir / "out" / d / "frame_0000.exr").string());
+    Image f2 = metrics::read_image((dir / "out" / d / "frame_0002.exr").string());
+    EXPECT_EQ(f0.data, f2.data) << d;
+  }
+  auto summary = nlohmann::json::parse(std::ifstream(dir / "out" / "summary.json"));
+  for (const char* v : {"no-aa", "ssaa"}) {
+    EXPECT_EQ(summary["variants"][v]["flicker"]["flicker_ratio_of_sums"], 1.0) << v;
+    EXPECT_EQ(summary["variants"][v]["flicker"]["temporal_error_mean"], 0.0) << v;
+  }
 }

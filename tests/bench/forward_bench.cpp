@@ -2,7 +2,7 @@
 // the sand material at 640x360 and 1280x720, for the full material and for
 // the variants with features compiled out, measured in one run (so ratios
 // between them are meaningful). Median of N timed frames after warm-up; GPU
-// timestamps. Usage: glintlab_bench [--device NAME] [--frames N] [--width W --height H]
+// timestamps; variants timed round-robin. Usage: glintlab_bench [--device NAME] [--frames N] [--width W --height H]
 #include "core/camera_path.h"
 #include "core/mesh.h"
 #include "core/renderer.h"
@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <memory>
 #include <string>
 
 using namespace glintlab;
@@ -89,7 +90,10 @@ int main(int argc, char** argv) {
     std::vector<core::SamplePush> one = {{cam.view_proj, {0, 0, 1, 0}}};
     std::printf("\n%dx%d (%.3f Mpix)\n", w, h, double(w) * h * 1e-6);
     std::printf("  %-34s %10s %10s %8s  %s\n", "variant", "ms/frame", "Mpix/s", "ratio", "defines");
-    double full_ms = 0;
+    // All variants are built first and timed round-robin, so drift in the
+    // machine's load spreads over every variant instead of biasing one.
+    std::vector<std::unique_ptr<core::SurfacePass>> passes;
+    std::vector<std::string> defines;
     for (const Case& c : cases) {
       core::SurfaceShader sh;
       sh.fragment = "passes/sand.frag";
@@ -97,18 +101,20 @@ int main(int argc, char** argv) {
       core::SandParamsGPU gpu = c.params.pack();
       sh.material.resize(sizeof gpu);
       std::memcpy(sh.material.data(), &gpu, sizeof gpu);
-      core::SurfacePass pass(ctx, scene, w, h, sh, /*draw_sky=*/false);
-      std::vector<double> ms;
-      for (int i = 0; i < frames + 2; ++i) {
-        double t = pass.render(fu, one).timings[0].gpu_ms;
-        if (i >= 2) ms.push_back(t);
-      }
-      double m = median(ms);
-      if (full_ms == 0) full_ms = m;
       std::string defs;
       for (const auto& d : sh.defines) defs += (defs.empty() ? "" : " ") + d;
-      std::printf("  %-34s %10.2f %10.2f %8.2f  %s\n", c.name.c_str(), m, double(w) * h * 1e-6 / (m * 1e-3),
-                  m / full_ms, defs.c_str());
+      defines.push_back(defs);
+      passes.push_back(std::make_unique<core::SurfacePass>(ctx, scene, w, h, sh, /*draw_sky=*/false));
+      for (int i = 0; i < 2; ++i) passes.back()->render(fu, one);  // warm-up (JIT, caches)
+    }
+    std::vector<std::vector<double>> ms(cases.size());
+    for (int i = 0; i < frames; ++i)
+      for (size_t c = 0; c < cases.size(); ++c) ms[c].push_back(passes[c]->render(fu, one).timings[0].gpu_ms);
+    double full_ms = median(ms[0]);
+    for (size_t c = 0; c < cases.size(); ++c) {
+      double m = median(ms[c]);
+      std::printf("  %-34s %10.2f %10.2f %8.2f  %s\n", cases[c].name.c_str(), m, double(w) * h * 1e-6 / (m * 1e-3),
+                  m / full_ms, defines[c].c_str());
     }
   }
   return 0;
