@@ -15,16 +15,16 @@
 #ifndef GLINTLAB_ENVIRONMENT_GLSL
 #define GLINTLAB_ENVIRONMENT_GLSL
 
-#define ENV_PI 3.14159265358979323846
+#include "common/math.glsl"
 
-// dir need not be unit; must be non-zero. The poles (x = z = 0) give u = 0 (atan(0, 0) is
-// undefined in GLSL).
+// dir need not be unit; a zero dir reads the zenith. The poles (x = z = 0) give u = 0
+// (atan(0, 0) is undefined in GLSL).
 vec2 env_latlong_uv(vec3 dir) {
-  vec3 d = normalize(dir);
-  float u = (d.x != 0.0 || d.z != 0.0) ? atan(d.z, d.x) * (0.5 / ENV_PI) : 0.0;
+  vec3 d = safe_normalize(dir, vec3(0.0, 1.0, 0.0));
+  float u = (d.x != 0.0 || d.z != 0.0) ? atan(d.z, d.x) * (0.5 * INV_PI) : 0.0;
   if (u < 0.0) u += 1.0;
   if (u >= 1.0) u = 0.0;
-  float v = acos(clamp(d.y, -1.0, 1.0)) * (1.0 / ENV_PI);
+  float v = acos(clamp(d.y, -1.0, 1.0)) * INV_PI;
   return vec2(u, v);
 }
 
@@ -38,7 +38,7 @@ vec3 env_radiance(vec3 dir, float lod) {
 // Irradiance E(n) = Σ E_lm Y_lm(n) (Ramamoorthi & Hanrahan 2001 eq. 7), basis order of
 // core/spherical_harmonics.h, clamped to >= 0.
 vec3 env_sh_irradiance(vec3 n) {
-  vec3 d = normalize(n);
+  vec3 d = safe_normalize(n, vec3(0.0, 1.0, 0.0));  // a zero normal reads the zenith
   float x = d.x, y = d.y, z = d.z;
   vec3 E = env_sh[0].rgb * 0.282094791773878
          + env_sh[1].rgb * (0.488602511902920 * y)
@@ -55,7 +55,7 @@ vec3 env_sh_irradiance(vec3 n) {
 // Kajs eq. 4.2: L_sky^Ω(x, Ω), the cosine-weighted hemisphere average of sky radiance around the
 // normal n, = E(n) / π.
 vec3 env_irradiance(vec3 n) {
-  return env_sh_irradiance(n) * (1.0 / ENV_PI);
+  return env_sh_irradiance(n) * INV_PI;
 }
 
 #endif  // GLINTLAB_ENVIRONMENT_GLSL
