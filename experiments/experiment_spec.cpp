@@ -152,8 +152,18 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
 std::vector<std::string> builtin_experiment_names() {
   std::vector<std::string> out;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(GLINTLAB_EXPERIMENT_DIR, ec))
-    if (e.is_regular_file() && e.path().extension() == ".json") out.push_back(e.path().stem().string());
+  const fs::path root(GLINTLAB_EXPERIMENT_DIR);
+  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_directory() && it->path().filename() == "paths") {  // camera paths, not experiments
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_regular_file() && it->path().extension() == ".json") {
+      fs::path rel = it->path().lexically_relative(root);
+      out.push_back((rel.parent_path() / rel.stem()).generic_string());  // e.g. "thesis/fig6-7-hdri-match"
+    }
+  }
   std::sort(out.begin(), out.end());
   return out;
 }

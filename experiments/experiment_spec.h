@@ -82,7 +82,8 @@ struct ExperimentSpec {
   static ExperimentSpec from_json(const nlohmann::json& j, const std::string& file);
 };
 
-// Built-in experiments: every *.json directly under GLINTLAB_EXPERIMENT_DIR.
+// Built-in experiments: every *.json under GLINTLAB_EXPERIMENT_DIR (not paths/), named by its
+// path relative to it without extension ("default", "thesis/fig6-7-hdri-match").
 std::vector<std::string> builtin_experiment_names();
 // A name of a built-in experiment, or a path to a file.
 std::string resolve_experiment_path(const std::string& name_or_path);
