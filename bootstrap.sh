@@ -8,8 +8,8 @@ PKGS=(
   libglm-dev
   libopenimageio-dev openimageio-tools
   libopencolorio-dev opencolorio-tools
-  libgtest-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev libxxhash-dev ninja-build
+  libgtest-dev
+  nlohmann-json3-dev libcli11-dev libxxhash-dev ninja-build
   fonts-dejavu-core
 )
 missing=()
