@@ -284,12 +284,13 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   // Contact sheet rows: one per reference group and variant, in run order.
   std::map<std::string, std::vector<SheetTile>> sheet;
   std::vector<std::string> sheet_order;
-  auto add_tile = [&](const std::string& row, int k, const Image& scene_linear) {
-    if (!spec.output.contact_sheet) return;
+  auto wants_tile = [&](const std::string& row) {
+    return spec.output.contact_sheet &&
+           (!sheet.count(row) || int(sheet[row].size()) < spec.output.contact_sheet_columns);
+  };
+  auto add_tile = [&](const std::string& row, int k, Image display_encoded) {
     if (!sheet.count(row)) sheet_order.push_back(row);
-    auto& tiles = sheet[row];
-    if (int(tiles.size()) < spec.output.contact_sheet_columns)
-      tiles.push_back({row + " f" + std::to_string(k), preview(scene_linear, spec, cm)});
+    sheet[row].push_back({row + " f" + std::to_string(k), std::move(display_encoded)});
   };
 
   // ---- CSV header
@@ -360,7 +361,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
           fs::create_directories(out_dir / group->name);
           metrics::write_exr(frame_path(out_dir / group->name, k, "exr").string(), *ref, chroma);
         }
-        if (k % spec.output.every == 0) add_tile(group->name, k, *ref);
+        if (k % spec.output.every == 0 && wants_tile(group->name)) add_tile(group->name, k, preview(*ref, spec, cm));
         ref_xyz = cm.to_xyz_d65(*ref, spec.working_space);
         ref_metric_xyz = mopt.display_view.empty() ? ref_xyz : metrics::metric_xyz(cm, *ref, spec.working_space, mopt);
       }
@@ -428,13 +429,17 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
         for (size_t i = 0; i < row.size(); ++i) csv << (i ? "," : "") << row[i];
         csv << "\n" << std::flush;
 
-        if (k % spec.output.every == 0 && (spec.output.exr || spec.output.png)) {
+        if (k % spec.output.every == 0) {
           fs::path dir = out_dir / v.name;
-          fs::create_directories(dir);
+          if (spec.output.exr || spec.output.png) fs::create_directories(dir);
           if (spec.output.exr) metrics::write_exr(frame_path(dir, k, "exr").string(), fo.color, chroma);
-          if (spec.output.png) metrics::write_png(frame_path(dir, k, "png").string(), preview(fo.color, spec, cm));
+          const bool tile = wants_tile(v.name);
+          if (spec.output.png || tile) {
+            Image shown = preview(fo.color, spec, cm);  // one display transform for the PNG and the sheet
+            if (spec.output.png) metrics::write_png(frame_path(dir, k, "png").string(), shown);
+            if (tile) add_tile(v.name, k, std::move(shown));
+          }
         }
-        if (k % spec.output.every == 0) add_tile(v.name, k, fo.color);
       }
       std::ostringstream detail;
       detail << std::fixed << std::setprecision(1);

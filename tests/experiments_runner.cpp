@@ -48,7 +48,7 @@ const char* kTiny = R"({
   "material": {"preset": "thesis-default", "noise_scale": 400, "glint_sigma": 0.002, "sigmoid_b": 6},
   "variants": [{"name": "no-aa"}, {"name": "ssaa", "aa": "ssaa", "ssaa_grid": 2}],
   "reference": {"grid": 3},
-  "output": {"exr": true, "png": true, "every": 2}
+  "output": {"exr": true, "png": true, "every": 2, "contact_sheet": true}
 })";
 
 }  // namespace
@@ -101,6 +101,11 @@ TEST(Runner, RunWritesEveryMetricForEveryFrameAndVariant) {
   EXPECT_TRUE(fs::exists(dir / "out" / "no-aa" / "frame_0002.png"));
   EXPECT_FALSE(fs::exists(dir / "out" / "no-aa" / "frame_0001.png"));  // every = 2
   EXPECT_FALSE(fs::exists(dir / "out" / "frames.csv.partial"));
+  // Contact sheet: rows reference, no-aa, ssaa; columns the saved frames 0 and 2 (64x36 tiles,
+  // 4 px gaps, 20 px labels; layout of experiments/contact_sheet.h).
+  Image sheet = metrics::read_image((dir / "out" / "contact_sheet.png").string());
+  EXPECT_EQ(sheet.width, 4 + 2 * (64 + 4));
+  EXPECT_EQ(sheet.height, 4 + 3 * (20 + 36 + 4));
 
   // Second run: every reference frame comes from the cache, same numbers.
   std::ostringstream log2;
