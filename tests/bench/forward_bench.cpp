@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <memory>
@@ -59,8 +60,11 @@ int main(int argc, char** argv) {
   core::EnvironmentTexture tex = environment_texture(env);
   core::VkContext ctx(core::ContextOptions{device, false});
   core::SceneGpu scene(ctx, mesh, tex);
-  std::printf("device: %s\nscene: %s, path %s frame 0, material thesis-default, %d timed frames after 2 warm-up\n",
-              ctx.info().name.c_str(), spec.mesh.type.c_str(), spec.path_name.c_str(), frames);
+  const char* lp_threads = std::getenv("LP_NUM_THREADS");
+  std::printf("device: %s (LP_NUM_THREADS=%s)\nscene: %s, path %s frame 0, material thesis-default, %d timed frames "
+              "after 2 warm-up\n",
+              ctx.info().name.c_str(), lp_threads ? lp_threads : "unset", spec.mesh.type.c_str(),
+              spec.path_name.c_str(), frames);
 
   core::SandParams base = to_working_space(spec.variants.front().material, spec.working_space, cm);
   core::SandFeatures all = distance_range(spec, mesh);
