@@ -57,6 +57,9 @@ void write_text_atomic(const fs::path& path, const std::string& text) {
   fs::rename(tmp, path);
 }
 
+// A number for summary.json: non-finite values become null (JSON has no inf/NaN).
+nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
 struct Stat {
   std::vector<double> v;
   void add(double x) { v.push_back(x); }
@@ -83,7 +86,6 @@ struct Stat {
     return v.empty() ? NAN : m;
   }
   nlohmann::json summary() const {
-    auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
     return {{"mean", num(mean())}, {"p95", num(percentile(0.95))}, {"max", num(max())}};
   }
 };
@@ -510,7 +512,6 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
       nlohmann::json m = nlohmann::json::object();
       for (auto& [name, st] : r->metric) m[name] = st.summary();
       j["metrics"] = m;
-      auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
       j["flicker"] = {{"temporal_error_mean", num(r->flicker.mean_temporal_error())},
                       {"flicker_ratio_mean", num(r->flicker.mean_flicker_ratio())},
                       {"flicker_ratio_of_sums", num(r->flicker.ratio_of_sums())}};
