@@ -4,7 +4,7 @@
 // Y = 1 being that white. ΔE00 is display-referred: values of Y far above 1 give L* > 100 (no clamping).
 #pragma once
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

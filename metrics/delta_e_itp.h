@@ -12,7 +12,7 @@
 
 #include <array>
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

@@ -8,7 +8,7 @@
 //  - non-finite inputs are not hidden: they propagate to the result (scan_pixels counts them).
 #pragma once
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

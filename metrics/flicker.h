@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

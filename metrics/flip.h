@@ -12,7 +12,7 @@
 // Borders are replicated (as the reference implementation). Separable convolutions throughout.
 #pragma once
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

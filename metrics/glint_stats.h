@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

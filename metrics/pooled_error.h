@@ -15,7 +15,7 @@
 
 #include <vector>
 
-#include "core/image.h"
+#include "core/util/image.h"
 
 namespace glintlab::metrics {
 

@@ -1,6 +1,6 @@
 // Per-frame uniforms (set 0, binding 0) and per-sample push constants shared
 // by every surface pass. Mirrored by core::FrameUniforms / core::SamplePush
-// (core/renderer.h); keep the two in the same order.
+// (core/render/frame_uniforms.h); keep the two in the same order.
 #ifndef GLINTLAB_FRAME_GLSL
 #define GLINTLAB_FRAME_GLSL
 

@@ -3,14 +3,14 @@
 // the variants with features compiled out, measured in one run (so ratios
 // between them are meaningful). Median of N timed frames after warm-up; GPU
 // timestamps; variants timed round-robin. Usage: glintlab_bench [--device NAME] [--frames N] [--width W --height H]
-#include "core/camera_path.h"
-#include "core/mesh.h"
-#include "core/renderer.h"
-#include "core/sand_material.h"
-#include "core/vk_context.h"
-#include "experiments/experiment_spec.h"
-#include "experiments/scene_setup.h"
-#include "metrics/color_manager.h"
+#include "core/scene/camera_path.h"
+#include "core/scene/mesh.h"
+#include "core/render/surface_pass.h"
+#include "core/material/sand_material.h"
+#include "core/vk/vk_context.h"
+#include "experiments/spec/experiment_spec.h"
+#include "experiments/spec/scene_setup.h"
+#include "metrics/color/color_manager.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,0 +1,242 @@
+#include "core/material/sand_material.h"
+
+#include "core/util/json_check.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace glintlab::core {
+
+namespace {
+
+const std::vector<std::string> kColourSpaces = {"lin_rec709", "ACEScg", "ACES2065-1", "sRGB"};
+const std::vector<std::string> kGlintModels = {"kajs", "none"};
+const std::vector<std::string> kFresnelHalfVectors = {"macro_normal", "light_view"};
+const double kPi = 3.14159265358979323846;
+
+struct Range {
+  const char* name;
+  double lo, hi;
+};
+// One table for validate() and from_json() so the two cannot disagree.
+const Range kSSS{"SSS", 0, 1}, kRs{"R_s", 0, 1}, kT{"T", 0, 1}, kRt{"R_t", 0, 1},
+    kSigmaG{"glint_sigma", 1e-6, 1}, kP{"P", 0, 1}, kNoise{"noise_scale", 1, 1e6},
+    kScatter{"scattering", 0, 1}, kAbsorb{"absorption", 0, 1}, kSigmaON{"oren_nayar_sigma", 0, kPi / 2},
+    kSigA{"sigmoid_a", 1e-6, 1e4}, kSigB{"sigmoid_b", 0, 1e7}, kIor{"ior", 1, 3}, kColour{"palette", 0, 1e3},
+    kGlintGain{"I_glints", 0, 1e6};
+
+std::string num(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+void check(const Range& r, double v, const std::string& suffix = "") {
+  if (!std::isfinite(v) || v < r.lo || v > r.hi)
+    throw ConfigError("sand: " + std::string(r.name) + suffix + " = " + num(v) + " is out of range; allowed [" +
+                      num(r.lo) + ", " + num(r.hi) + "]");
+}
+
+void check_enum(const char* name, const std::string& v, const std::vector<std::string>& allowed) {
+  for (const auto& a : allowed)
+    if (a == v) return;
+  std::string list;
+  for (size_t i = 0; i < allowed.size(); ++i) list += (i ? ", \"" : "\"") + allowed[i] + "\"";
+  throw ConfigError("sand: " + std::string(name) + " = \"" + v + "\" is not allowed; allowed " + list);
+}
+
+double get(JsonReader& r, const Range& range, double def) { return r.get_number(range.name, def, range.lo, range.hi); }
+
+}  // namespace
+
+std::vector<std::string> SandParams::preset_names() { return {"thesis-default", "thesis-hdri-match", "thesis-appendix-a"}; }
+
+SandParams SandParams::preset(const std::string& name) {
+  SandParams p;  // Appendix A property defaults
+  if (name == "thesis-default") return p;
+  if (name == "thesis-hdri-match") {
+    // Kajs 2022 sec. 6.2: Fig. 6.8 copies the Blender BSDF of Fig. 6.5 --
+    // Roughness 0.300, IOR 1.458, Transmission 0.250, TransmissionRoughness
+    // 0.300, BaseColor (0.895, 0.713, 0.602) for all grains, no subsurface
+    // scattering. P and the noise scale are only shown in the Fig. 6.8 image:
+    // Appendix A defaults are kept.
+    for (auto& c : p.palette) c = {0.895, 0.713, 0.602};
+    p.palette_space = "lin_rec709";  // Blender's scene-linear RGB fields
+    p.SSS = 0.0;
+    p.R_s = 0.3;
+    p.T = 0.25;
+    p.R_t = 0.3;
+    p.ior = 1.458;
+    return p;
+  }
+  if (name == "thesis-appendix-a") {
+    p.appendix_compat = kSandCompatAll;
+    return p;
+  }
+  check_enum("preset", name, preset_names());
+  return p;  // unreachable
+}
+
+std::vector<std::string> SandParams::compat_names() {
+  return {"rand_normalized", "intensity_xi1", "gate_xi1", "glint_sky", "fresnel_abs", "oren_nayar_world"};
+}
+
+std::vector<std::string> SandParams::debug_output_names() {
+  return {"final", "diffuse", "specular", "glints", "fresnel", "transmission", "far", "sigmoid", "grain_id", "close"};
+}
+
+int SandParams::debug_output_define(const std::string& name) {
+  auto names = debug_output_names();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);  // = SAND_DEBUG_* in sand.glsl
+  check_enum("debug_output", name, names);
+  return 0;
+}
+
+void SandParams::validate() const {
+  for (size_t i = 0; i < palette.size(); ++i)
+    for (size_t c = 0; c < 3; ++c) check(kColour, palette[i][c], "[" + std::to_string(i) + "][" + std::to_string(c) + "]");
+  for (size_t c = 0; c < 3; ++c) check(kGlintGain, I_glints[c], "[" + std::to_string(c) + "]");
+  check(kSSS, SSS);
+  check(kRs, R_s);
+  check(kT, T);
+  check(kRt, R_t);
+  check(kSigmaG, glint_sigma);
+  check(kP, P);
+  check(kNoise, noise_scale);
+  check(kScatter, scattering);
+  check(kAbsorb, absorption);
+  check(kSigmaON, oren_nayar_sigma);
+  check(kSigA, sigmoid_a);
+  check(kSigB, sigmoid_b);
+  check(kIor, ior);
+  check_enum("palette_space", palette_space, kColourSpaces);
+  check_enum("glint_model", glint_model, kGlintModels);
+  check_enum("fresnel_half_vector", fresnel_half_vector, kFresnelHalfVectors);
+  if (appendix_compat & ~uint32_t(kSandCompatAll))
+    throw ConfigError("sand: appendix_compat = " + std::to_string(appendix_compat) + " has unknown bits; allowed 0.." +
+                      std::to_string(unsigned(kSandCompatAll)));
+}
+
+SandParams SandParams::from_json(JsonReader& r) {
+  SandParams p = preset(r.get_enum("preset", "thesis-default", preset_names()));
+  if (r.has("palette")) {
+    const auto& j = r.raw("palette");
+    if (!j.is_array() || j.size() != 8) r.fail("palette", "expected an array of 8 [r, g, b] colours");
+    for (size_t i = 0; i < 8; ++i) {
+      const auto& c = j[i];
+      if (!c.is_array() || c.size() != 3)
+        r.fail("palette", "element " + std::to_string(i) + ": expected [r, g, b] with values in [0, 1000]");
+      for (size_t k = 0; k < 3; ++k) {
+        if (!c[k].is_number() || !std::isfinite(c[k].get<double>()) || c[k].get<double>() < kColour.lo ||
+            c[k].get<double>() > kColour.hi)
+          r.fail("palette", "element " + std::to_string(i) + "[" + std::to_string(k) +
+                                "]: expected a number in [0, 1000]");
+        p.palette[i][k] = c[k].get<double>();
+      }
+    }
+  }
+  p.palette_space = r.get_enum("palette_space", p.palette_space, kColourSpaces);
+  p.SSS = get(r, kSSS, p.SSS);
+  p.R_s = get(r, kRs, p.R_s);
+  p.T = get(r, kT, p.T);
+  p.R_t = get(r, kRt, p.R_t);
+  p.glint_sigma = get(r, kSigmaG, p.glint_sigma);
+  p.P = get(r, kP, p.P);
+  p.noise_scale = get(r, kNoise, p.noise_scale);
+  auto ig = r.get_numbers(kGlintGain.name, std::vector<double>(p.I_glints.begin(), p.I_glints.end()), kGlintGain.lo,
+                          kGlintGain.hi);
+  p.I_glints = {ig[0], ig[1], ig[2]};
+  p.scattering = get(r, kScatter, p.scattering);
+  p.absorption = get(r, kAbsorb, p.absorption);
+  p.oren_nayar_sigma = get(r, kSigmaON, p.oren_nayar_sigma);
+  p.sigmoid_a = get(r, kSigA, p.sigmoid_a);
+  p.sigmoid_b = get(r, kSigB, p.sigmoid_b);
+  p.ior = get(r, kIor, p.ior);
+  p.glint_model = r.get_enum("glint_model", p.glint_model, kGlintModels);
+  p.fresnel_half_vector = r.get_enum("fresnel_half_vector", p.fresnel_half_vector, kFresnelHalfVectors);
+  if (r.has("appendix_compat")) {
+    const auto& j = r.raw("appendix_compat");
+    auto names = compat_names();
+    std::string allowed = "\"none\", \"all\" or an array of";
+    for (const auto& n : names) allowed += " \"" + n + "\"";
+    if (j.is_string() && j.get<std::string>() == "none") {
+      p.appendix_compat = 0;
+    } else if (j.is_string() && j.get<std::string>() == "all") {
+      p.appendix_compat = kSandCompatAll;
+    } else if (j.is_array()) {
+      p.appendix_compat = 0;
+      for (const auto& e : j) {
+        bool found = false;
+        for (size_t i = 0; i < names.size(); ++i)
+          if (e.is_string() && e.get<std::string>() == names[i]) {
+            p.appendix_compat |= 1u << i;
+            found = true;
+          }
+        if (!found) r.fail("appendix_compat", "unknown entry " + e.dump() + "; allowed " + allowed);
+      }
+    } else {
+      r.fail("appendix_compat", "expected " + allowed);
+    }
+  }
+  r.finish();
+  p.validate();
+  return p;
+}
+
+SandParamsGPU SandParams::pack() const {
+  validate();
+  SandParamsGPU g{};
+  for (size_t i = 0; i < 8; ++i) {
+    for (size_t c = 0; c < 3; ++c) g.palette[i][c] = float(palette[i][c]);
+    g.palette[i][3] = 1.0f;
+  }
+  for (size_t c = 0; c < 3; ++c) g.I_glints[c] = float(I_glints[c]);
+  g.SSS = float(SSS);
+  g.R_s = float(R_s);
+  g.T = float(T);
+  g.R_t = float(R_t);
+  g.sigma_g = float(glint_sigma);
+  g.P = float(P);
+  g.noise_scale = float(noise_scale);
+  g.ior = float(ior);
+  g.scattering = float(scattering);
+  g.absorption = float(absorption);
+  g.sigma_on = float(oren_nayar_sigma);
+  g.sig_a = float(sigmoid_a);
+  g.sig_b = float(sigmoid_b);
+  g.appendix_compat = appendix_compat;
+  g.fresnel_half_vector = fresnel_half_vector == "light_view" ? 1u : 0u;  // SAND_FRESNEL_*
+  g.glint_model = glint_model == "kajs" ? 1u : 0u;                       // SAND_GLINT_*
+  return g;
+}
+
+double sand_sigmoid(double x, double a, double b) {
+  double z = a * (x - b);
+  if (std::isnan(z)) return 0.5;
+  double e = std::exp(-std::fabs(z));
+  return z >= 0 ? 1.0 / (1.0 + e) : e / (1.0 + e);
+}
+
+std::vector<std::string> shader_defines(const SandParams& p, const SandFeatures& needs) {
+  p.validate();
+  int debug = SandParams::debug_output_define(needs.debug_output);
+  if (!(needs.min_distance >= 0) || !(needs.max_distance >= needs.min_distance))
+    throw ConfigError("sand: features: need 0 <= min_distance <= max_distance, got [" + num(needs.min_distance) +
+                      ", " + num(needs.max_distance) + "]");
+  bool transmission = p.T > 0.0;
+  bool glints = p.glint_model != "none" && (p.I_glints[0] > 0 || p.I_glints[1] > 0 || p.I_glints[2] > 0);
+  bool far = true, close = true;
+  if (debug == 0) {
+    // eq. 4.38: the far weight is sig(dist), increasing in dist (a > 0)
+    far = sand_sigmoid(needs.max_distance, p.sigmoid_a, p.sigmoid_b) >= kSandPruneWeight;
+    close = 1.0 - sand_sigmoid(needs.min_distance, p.sigmoid_a, p.sigmoid_b) >= kSandPruneWeight;
+    if (!far && !close) close = true;  // degenerate range: keep the nearer field
+  }
+  if (!close) glints = false;  // glints live in L_close only
+  return {"SAND_TRANSMISSION=" + std::to_string(int(transmission)), "SAND_GLINTS=" + std::to_string(int(glints)),
+          "SAND_CLOSE=" + std::to_string(int(close)), "SAND_FAR=" + std::to_string(int(far)),
+          "SAND_DEBUG=" + std::to_string(debug)};
+}
+
+}  // namespace glintlab::core

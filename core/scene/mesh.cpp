@@ -1,0 +1,202 @@
+#include "core/scene/mesh.h"
+
+#include "core/util/json_check.h"
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/noise.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+
+namespace glintlab::core {
+
+namespace {
+
+constexpr float kTwoPi = 6.28318530717958647692f;
+constexpr float kPi = 3.14159265358979323846f;
+
+// splitmix64 (Steele et al. 2014): integer hash for the per-octave seed offsets of the dune noise.
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Offset in [0, 256)^2 of octave `o`: decorrelates octaves and seeds without float->int casts.
+glm::vec2 octave_offset(uint32_t seed, int o) {
+  uint64_t h = splitmix64((uint64_t(seed) << 32) ^ uint64_t(o));
+  float a = float(h >> 40) * (256.0f / 16777216.0f);
+  float b = float((h >> 16) & 0xFFFFFFull) * (256.0f / 16777216.0f);
+  return {a, b};
+}
+
+// Ridged multi-octave noise (Musgrave's ridged multifractal without the feedback term): each octave
+// contributes (1 - |perlin|)^2, sharp crests where the noise crosses zero, like dune ridges.
+float ridged_dunes(const MeshSpec& s, float x, float z) {
+  glm::vec2 p = glm::vec2(x, z) / s.wavelength;
+  float sum = 0.0f, norm = 0.0f, amp = 1.0f, freq = 1.0f;
+  for (int o = 0; o < s.octaves; ++o) {
+    float n = glm::perlin(p * freq + octave_offset(s.seed, o));
+    float r = 1.0f - std::min(1.0f, std::fabs(n));
+    sum += amp * r * r;
+    norm += amp;
+    amp *= s.gain;
+    freq *= s.lacunarity;
+  }
+  return s.amplitude * sum / norm;  // in [0, amplitude]
+}
+
+void validate(const MeshSpec& s) {
+  auto bad = [&](const std::string& m) { throw std::invalid_argument("mesh \"" + s.type + "\": " + m); };
+  if (s.type != "plane" && s.type != "wavy" && s.type != "sphere" && s.type != "dunes")
+    throw std::invalid_argument("mesh: unknown type \"" + s.type + "\"; expected plane, wavy, sphere or dunes");
+  if (!(s.size > 0.0f) || !std::isfinite(s.size)) bad("size must be > 0");
+  if (s.tessellation < 1 || s.tessellation > 4096) bad("tessellation must be in [1, 4096]");
+  if (s.type == "sphere" && s.tessellation < 3) bad("sphere tessellation must be >= 3");
+  if (s.type == "wavy" || s.type == "dunes") {
+    if (!std::isfinite(s.amplitude)) bad("amplitude must be finite");
+    if (!(s.wavelength > 0.0f) || !std::isfinite(s.wavelength)) bad("wavelength must be > 0");
+  }
+  if (s.type == "dunes" && (s.octaves < 1 || s.octaves > 16)) bad("octaves must be in [1, 16]");
+  if (s.type == "sphere" && (s.layers < 1 || !(s.layer_spacing >= 0.0f) || float(s.layers - 1) * s.layer_spacing >= 1.0f))
+    bad("layers must be >= 1 and (layers - 1) * layer_spacing < 1 (inner shells need a positive radius)");
+}
+
+// Completes tangent (Gram-Schmidt against n) and handedness from d(position)/dv.
+Vertex make_vertex(glm::vec3 p, glm::vec3 n, glm::vec3 dpdu, glm::vec3 dpdv, glm::vec2 uv) {
+  n = glm::normalize(n);
+  glm::vec3 t = glm::normalize(dpdu - n * glm::dot(n, dpdu));
+  float w = glm::dot(glm::cross(n, t), dpdv) < 0.0f ? -1.0f : 1.0f;
+  return Vertex{p, n, glm::vec4(t, w), uv};
+}
+
+// Regular grid of (nu + 1) x (nv + 1) vertices, index i + j (nu + 1). `flip` reverses the winding
+// for parameterisations where cross(dP/du, dP/dv) points against the outward normal.
+void grid_indices(Mesh& m, uint32_t base, int nu, int nv, bool flip, bool skip_top_pole, bool skip_bottom_pole) {
+  auto id = [&](int i, int j) { return base + uint32_t(i + j * (nu + 1)); };
+  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) {
+    if (flip) std::swap(b, c);
+    m.indices.insert(m.indices.end(), {a, b, c});
+  };
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      uint32_t p00 = id(i, j), p10 = id(i + 1, j), p01 = id(i, j + 1), p11 = id(i + 1, j + 1);
+      // At a pole row one triangle of the quad has zero area (p00 == p10 on top, p01 == p11 below).
+      if (!(skip_top_pole && j == 0)) tri(p00, p10, p11);
+      if (!(skip_bottom_pole && j == nv - 1)) tri(p00, p11, p01);
+    }
+}
+
+void height_field_mesh(Mesh& m, const MeshSpec& s, const std::function<glm::vec3(float, float)>& h_grad) {
+  // h_grad(x, z) = (h, dh/dx, dh/dz). u along +x, v along +z.
+  const int n = s.tessellation;
+  const float half = 0.5f * s.size;
+  m.vertices.reserve(size_t(n + 1) * size_t(n + 1));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      glm::vec2 uv(float(i) / float(n), float(j) / float(n));
+      float x = -half + uv.x * s.size, z = -half + uv.y * s.size;
+      glm::vec3 hg = h_grad(x, z);
+      glm::vec3 p(x, hg.x, z);
+      glm::vec3 dpdu = glm::vec3(1.0f, hg.y, 0.0f) * s.size;
+      glm::vec3 dpdv = glm::vec3(0.0f, hg.z, 1.0f) * s.size;
+      glm::vec3 normal(-hg.y, 1.0f, -hg.z);  // normal of y = h(x, z)
+      m.vertices.push_back(make_vertex(p, normal, dpdu, dpdv, uv));
+    }
+  // cross(+x, +z) = -y: reverse so that triangles face +Y.
+  grid_indices(m, 0, n, n, /*flip=*/true, false, false);
+}
+
+void sphere_shell(Mesh& m, float r, int slices) {
+  const int stacks = std::max(2, slices / 2);
+  const uint32_t base = uint32_t(m.vertices.size());
+  for (int j = 0; j <= stacks; ++j)
+    for (int i = 0; i <= slices; ++i) {
+      glm::vec2 uv(float(i) / float(slices), float(j) / float(stacks));
+      // Same angles as the environment's lat-long map: theta from +Y, phi from +X towards +Z.
+      float theta = kPi * uv.y, phi = kTwoPi * uv.x;
+      float st = std::sin(theta), ct = std::cos(theta), sp = std::sin(phi), cp = std::cos(phi);
+      if (j == 0) st = 0.0f, ct = 1.0f;  // exact poles
+      if (j == stacks) st = 0.0f, ct = -1.0f;
+      if (i == slices) sp = 0.0f, cp = 1.0f;  // exact seam
+      glm::vec3 n(st * cp, ct, st * sp);
+      glm::vec3 dpdu(-sp, 0.0f, cp);             // direction of dP/dphi (defined at the poles too)
+      glm::vec3 dpdv(ct * cp, -st, ct * sp);     // direction of dP/dtheta
+      m.vertices.push_back(make_vertex(r * n, n, dpdu, dpdv, uv));
+    }
+  // cross(dP/dphi, dP/dtheta) points outwards: no flip.
+  grid_indices(m, base, slices, stacks, /*flip=*/false, true, true);
+}
+
+}  // namespace
+
+float height_field(const MeshSpec& s, float x, float z) {
+  if (s.type == "plane") return 0.0f;
+  if (s.type == "wavy") return s.amplitude * std::sin(kTwoPi * x / s.wavelength);
+  if (s.type == "dunes") return ridged_dunes(s, x, z);
+  throw std::invalid_argument("height_field: mesh type \"" + s.type + "\" is not a height field");
+}
+
+Mesh build_mesh(const MeshSpec& s) {
+  validate(s);
+  Mesh m;
+  if (s.type == "plane") {
+    height_field_mesh(m, s, [](float, float) { return glm::vec3(0.0f); });
+  } else if (s.type == "wavy") {
+    // Kajs sec. 2.2 "wavy plane": y = A sin(2π x / λ), analytic derivative.
+    const float k = kTwoPi / s.wavelength;
+    height_field_mesh(m, s, [&](float x, float) {
+      return glm::vec3(s.amplitude * std::sin(k * x), s.amplitude * k * std::cos(k * x), 0.0f);
+    });
+  } else if (s.type == "dunes") {
+    // Normals from central differences of the height with the grid spacing as step, i.e. the slope
+    // the triangles themselves have.
+    const float d = s.size / float(s.tessellation);
+    height_field_mesh(m, s, [&](float x, float z) {
+      float hx = (ridged_dunes(s, x + d, z) - ridged_dunes(s, x - d, z)) / (2.0f * d);
+      float hz = (ridged_dunes(s, x, z + d) - ridged_dunes(s, x, z - d)) / (2.0f * d);
+      return glm::vec3(ridged_dunes(s, x, z), hx, hz);
+    });
+  } else {  // sphere
+    const float r = 0.5f * s.size;
+    for (int k = 0; k < s.layers; ++k) sphere_shell(m, r * (1.0f - float(k) * s.layer_spacing), s.tessellation);
+  }
+  m.bounds_min = glm::vec3(std::numeric_limits<float>::max());
+  m.bounds_max = glm::vec3(std::numeric_limits<float>::lowest());
+  for (const Vertex& v : m.vertices) {
+    m.bounds_min = glm::min(m.bounds_min, v.position);
+    m.bounds_max = glm::max(m.bounds_max, v.position);
+  }
+  return m;
+}
+
+MeshSpec MeshSpec::from_json(JsonReader& r) {
+  MeshSpec s;
+  s.type = r.get_enum("type", {"plane", "wavy", "sphere", "dunes"});
+  s.size = float(r.get_number("size", 10.0, 1e-3, 1e5));
+  s.tessellation = r.get_int("tessellation", 128, s.type == "sphere" ? 3 : 1, 4096);
+  if (s.type == "wavy") {
+    s.amplitude = float(r.get_number("amplitude", 1.0, -1e4, 1e4));
+    s.wavelength = float(r.get_number("wavelength", s.size, 1e-3, 1e5));
+  } else if (s.type == "dunes") {
+    s.amplitude = float(r.get_number("amplitude", 1.5, 0.0, 1e4));
+    s.wavelength = float(r.get_number("wavelength", 8.0, 1e-3, 1e5));
+    s.octaves = r.get_int("octaves", 4, 1, 16);
+    s.lacunarity = float(r.get_number("lacunarity", 2.0, 1.0, 8.0));
+    s.gain = float(r.get_number("gain", 0.5, 0.0, 1.0));
+    s.seed = uint32_t(r.get_int("seed", 1, 0, 2147483647));
+  } else if (s.type == "sphere") {
+    s.layers = r.get_int("layers", 1, 1, 64);
+    s.layer_spacing = float(r.get_number("layer_spacing", 0.1, 0.0, 1.0));
+    if (float(s.layers - 1) * s.layer_spacing >= 1.0f)
+      r.fail("layer_spacing", "(layers - 1) * layer_spacing must be < 1 so that every shell has a positive radius");
+  }
+  r.finish();
+  return s;
+}
+
+}  // namespace glintlab::core

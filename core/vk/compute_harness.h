@@ -1,0 +1,19 @@
+// Evaluates a compute shader on an array of inputs: the GPU half of the
+// shader-vs-fp64 tests and of numerical probes. Binding contract:
+//   layout(std430, set = 0, binding = 0) readonly buffer Inputs  { float inputs[];  };
+//   layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float outputs[]; };
+//   layout(push_constant) uniform Push { uint count; };
+// local_size_x = 64; ceil(count / 64) workgroups are dispatched.
+#pragma once
+
+#include "core/vk/vk_context.h"
+
+#include <string>
+#include <vector>
+
+namespace glintlab::core {
+
+std::vector<float> run_compute(VkContext& ctx, const std::string& shader_path, const std::vector<std::string>& defines,
+                               const std::vector<float>& inputs, size_t output_floats, uint32_t count);
+
+}  // namespace glintlab::core

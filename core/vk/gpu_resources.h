@@ -1,0 +1,91 @@
+// Small RAII owners of Vulkan buffers, images, and the one-time helpers that
+// move data between them and the host. Nothing here knows about passes.
+#pragma once
+
+#include "core/vk/vk_context.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace glintlab::core {
+
+// A buffer in host-visible, host-coherent memory (all memory on lavapipe; on
+// a discrete GPU this is the upload/readback path).
+class Buffer {
+ public:
+  Buffer() = default;
+  Buffer(const VkContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage);
+  ~Buffer();
+  Buffer(Buffer&& o) noexcept { *this = std::move(o); }
+  Buffer& operator=(Buffer&& o) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceSize size() const { return size_; }
+  void* mapped() const { return mapped_; }
+  void upload(const void* data, size_t bytes, size_t offset = 0);
+
+ private:
+  void release();
+  const VkContext* ctx_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+};
+
+// A 2D optimal-tiling image in device-local memory with one view over all
+// mips (none for transfer-only images).
+class Image2D {
+ public:
+  Image2D() = default;
+  Image2D(const VkContext& ctx, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+          uint32_t mip_levels = 1, VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
+  ~Image2D();
+  Image2D(Image2D&& o) noexcept { *this = std::move(o); }
+  Image2D& operator=(Image2D&& o) noexcept;
+  Image2D(const Image2D&) = delete;
+  Image2D& operator=(const Image2D&) = delete;
+
+  VkImage handle() const { return image_; }
+  VkImageView view() const { return view_; }
+  VkFormat format() const { return format_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  uint32_t mip_levels() const { return mips_; }
+  VkImageAspectFlags aspect() const { return aspect_; }
+
+ private:
+  void release();
+  const VkContext* ctx_ = nullptr;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+  VkFormat format_ = VK_FORMAT_UNDEFINED;
+  uint32_t width_ = 0, height_ = 0, mips_ = 1;
+  VkImageAspectFlags aspect_ = VK_IMAGE_ASPECT_COLOR_BIT;
+};
+
+// Records a layout transition of all mips with a conservative full barrier.
+void transition(VkCommandBuffer cmd, const Image2D& img, VkImageLayout from, VkImageLayout to,
+                VkPipelineStageFlags src_stage, VkAccessFlags src_access, VkPipelineStageFlags dst_stage,
+                VkAccessFlags dst_access);
+
+// Bytes per pixel of the float formats the renderer uses (RGBA32F, RGBA16F, R32F).
+uint32_t bytes_per_pixel(VkFormat format);
+
+// Row pitch used for readback copies: rows are padded to `alignment` bytes,
+// as a driver's linear layouts are; readback removes the padding.
+VkDeviceSize padded_row_pitch(uint32_t width, VkFormat format, VkDeviceSize alignment = 256);
+
+// Copies mip 0 of a colour image (in TRANSFER_SRC layout) to host memory as
+// tightly packed 32-bit floats (RGBA16F is widened). Honours the padded row pitch.
+std::vector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout);
+
+// Uploads tightly packed RGBA32F pixels into the given mip of an RGBA32F image
+// and leaves every mip in SHADER_READ_ONLY layout after the last call.
+void upload_rgba32f_mips(const VkContext& ctx, Image2D& img, const std::vector<std::vector<float>>& mips);
+
+}  // namespace glintlab::core

@@ -1,0 +1,180 @@
+#include "experiments/spec/experiment_spec.h"
+
+#include "core/util/json_check.h"
+#include "metrics/color/measurement_space.h"
+#include "metrics/metric_registry.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+namespace fs = std::filesystem;
+
+namespace glintlab {
+
+namespace {
+
+core::CameraPath load_path(JsonReader& r, const std::string& key, const std::string& file, std::string* name) {
+  const nlohmann::json& v = r.raw(key);
+  if (v.is_object()) {
+    *name = "inline";
+    JsonReader pr(v, file, r.key_path(key));
+    return core::CameraPath::from_json(pr);
+  }
+  if (!v.is_string())
+    r.fail(key, "expected a built-in path name, a path file or an inline path object");
+  std::string s = v.get<std::string>();
+  *name = s;
+  auto builtins = core::CameraPath::builtin_names();
+  if (std::find(builtins.begin(), builtins.end(), s) != builtins.end()) return core::CameraPath::builtin(s);
+  for (fs::path base : {fs::path(file).parent_path(), fs::path(GLINTLAB_EXPERIMENT_DIR)}) {
+    fs::path p = base / s;
+    if (fs::is_regular_file(p)) return core::CameraPath::load(p.string());
+  }
+  std::string allowed;
+  for (const auto& b : builtins) allowed += (allowed.empty() ? "" : ", ") + b;
+  r.fail(key, "\"" + s + "\" is neither a built-in path (" + allowed + ") nor a file relative to " + file +
+                  " or " + GLINTLAB_EXPERIMENT_DIR);
+}
+
+core::SandParams parse_material(const nlohmann::json& j, const std::string& file, const std::string& path) {
+  JsonReader r(j, file, path);
+  return core::SandParams::from_json(r);
+}
+
+}  // namespace
+
+ExperimentSpec ExperimentSpec::load(const std::string& file) { return from_json(read_json_file(file), file); }
+
+ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::string& file) {
+  ExperimentSpec s;
+  s.file = file;
+  s.source = j;
+  JsonReader r(j, file);
+  s.name = r.get_string("name", fs::path(file).stem().string());
+  s.description = r.get_string("description", "");
+  auto res = r.get_numbers("resolution", std::vector<double>{640, 360}, 1, 16384);
+  if (res[0] != double(int(res[0])) || res[1] != double(int(res[1]))) r.fail("resolution", "expected two integers");
+  s.width = int(res[0]);
+  s.height = int(res[1]);
+  s.working_space = r.get_enum("working_space", "lin_rec709", {"lin_rec709", "ACEScg"});
+
+  JsonReader scene = r.child("scene");
+  JsonReader mesh = scene.child("mesh");
+  s.mesh = core::MeshSpec::from_json(mesh);
+  if (auto sky = scene.optional_child("sky")) s.sky = core::SkySpec::from_json(*sky);
+  scene.finish();
+
+  s.path = load_path(r, "camera_path", file, &s.path_name);
+  s.frames = r.get_int("frames", s.path.frames(), 1, s.path.frames());
+
+  s.material_json = r.has("material") ? r.raw("material") : nlohmann::json::object({{"preset", "thesis-default"}});
+  if (!s.material_json.is_object()) r.fail("material", "expected an object {\"preset\": ..., overrides}");
+  parse_material(s.material_json, file, r.key_path("material"));  // validate once at experiment level
+
+  std::set<std::string> names;
+  auto variants = r.array("variants", 1, 64);
+  for (size_t i = 0; i < variants.size(); ++i) {
+    JsonReader& vr = variants[i];
+    VariantSpec v;
+    v.name = vr.get_string("name");
+    if (v.name.empty() || v.name.find_first_of("/\\ ,\"") != std::string::npos)
+      vr.fail("name", "must be non-empty without '/', '\\\\', spaces, commas or quotes (it names files and CSV rows)");
+    if (!names.insert(v.name).second) vr.fail("name", "\"" + v.name + "\" is used by two variants");
+    v.aa = vr.get_enum("aa", "none", {"none", "ssaa"});
+    v.ssaa_grid = vr.get_int("ssaa_grid", v.aa == "ssaa" ? 2 : 1, 1, 16);
+    if (v.aa != "ssaa" && vr.has("ssaa_grid") && v.ssaa_grid != 1)
+      vr.fail("ssaa_grid", "only applies to \"aa\": \"ssaa\"");
+    v.debug = vr.get_enum("debug", "final", core::SandParams::debug_output_names());
+    v.material_json = s.material_json;
+    if (vr.has("material")) {
+      const nlohmann::json& over = vr.raw("material");
+      if (!over.is_object()) vr.fail("material", "expected an object of material overrides");
+      for (auto it = over.begin(); it != over.end(); ++it) v.material_json[it.key()] = it.value();
+    }
+    v.material = parse_material(v.material_json, file, vr.key_path("material"));
+    vr.finish();
+    s.variants.push_back(std::move(v));
+  }
+
+  if (auto ref = r.optional_child("reference")) {
+    s.reference.enabled = ref->get_bool("enabled", true);
+    s.reference.grid = ref->get_int("grid", 16, 1, 64);
+    ref->finish();
+  }
+
+  auto allowed_metrics = metrics::metric_names();
+  if (r.has("metrics")) {
+    const auto& m = r.raw("metrics");
+    if (!m.is_array()) r.fail("metrics", "expected an array of metric names");
+    for (const auto& e : m) {
+      if (!e.is_string() || std::find(allowed_metrics.begin(), allowed_metrics.end(), e.get<std::string>()) ==
+                                allowed_metrics.end()) {
+        std::string list;
+        for (const auto& a : allowed_metrics) list += (list.empty() ? "" : ", ") + a;
+        r.fail("metrics", "unknown metric " + e.dump() + "; allowed: " + list);
+      }
+      s.metrics.push_back(e.get<std::string>());
+    }
+  } else {
+    s.metrics = allowed_metrics;
+  }
+
+  if (auto mo = r.optional_child("metric_options")) {
+    s.metric_options.display_view = mo->get_string("view", "");
+    if (!s.metric_options.display_view.empty()) {
+      try {
+        metrics::parse_display_view(s.metric_options.display_view);
+      } catch (const std::invalid_argument& e) {
+        mo->fail("view", std::string(e.what()) + " (or \"\" for scene-referred)");
+      }
+    }
+    s.metric_options.itp_luminance_nits = mo->get_number("itp_nits", 100.0, 1e-3, 1e5);
+    s.metric_options.flip_hdr = mo->get_enum("flip", "hdr", {"hdr", "ldr"}) == "hdr";
+    s.metric_options.flip_ppd = mo->get_number("flip_ppd", 67.0, 1.0, 1000.0);
+    mo->finish();
+  }
+
+  if (auto out = r.optional_child("output")) {
+    s.output.exr = out->get_bool("exr", true);
+    s.output.png = out->get_bool("png", true);
+    s.output.every = out->get_int("every", 1, 1, 1000000);
+    s.output.display = out->get_string("display", "sRGB");
+    s.output.view = out->get_string("view", "Standard");
+    s.output.contact_sheet = out->get_bool("contact_sheet", false);
+    s.output.contact_sheet_columns = out->get_int("contact_sheet_columns", 8, 1, 64);
+    out->finish();
+  }
+  r.finish();
+  return s;
+}
+
+std::vector<std::string> builtin_experiment_names() {
+  std::vector<std::string> out;
+  std::error_code ec;
+  const fs::path root(GLINTLAB_EXPERIMENT_DIR);
+  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_directory() && it->path().filename() == "paths") {  // camera paths, not experiments
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_regular_file() && it->path().extension() == ".json") {
+      fs::path rel = it->path().lexically_relative(root);
+      out.push_back((rel.parent_path() / rel.stem()).generic_string());  // e.g. "thesis/fig6-7-hdri-match"
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string resolve_experiment_path(const std::string& name_or_path) {
+  if (fs::is_regular_file(name_or_path)) return name_or_path;
+  fs::path p = fs::path(GLINTLAB_EXPERIMENT_DIR) / (name_or_path + ".json");
+  if (fs::is_regular_file(p)) return p.string();
+  std::string list;
+  for (const auto& n : builtin_experiment_names()) list += (list.empty() ? "" : ", ") + n;
+  throw ConfigError(name_or_path + ": no such experiment file, and not a built-in experiment (" + list + ")");
+}
+
+}  // namespace glintlab

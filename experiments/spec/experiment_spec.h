@@ -1,0 +1,91 @@
+// An experiment file (experiments/*.json) as a validated, typed spec. Every
+// error names the file, the key path and what is allowed (ConfigError).
+//
+// {
+//   "name": "default", "description": "...",
+//   "resolution": [640, 360],              // each in [1, 16384]
+//   "frames": 24,                          // optional, <= the path's frame count (default: all)
+//   "working_space": "lin_rec709",         // or "ACEScg" (OCIO names of the shipped config)
+//   "scene": { "mesh": {MeshSpec}, "sky": {SkySpec} },
+//   "camera_path": "orbit-close" | "paths/x.json" | {inline CameraPath},
+//   "material": {"preset": "thesis-default", <SandParams overrides>},
+//   "variants": [ {"name": "no-aa", "aa": "none" | "ssaa", "ssaa_grid": 2,
+//                  "debug": "final" | <debug output>, "material": {<overrides>}} ],
+//   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
+//   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],
+//   "metric_options": {"view": "" | "sRGB/Standard",  // "" = scene-referred per-pixel metrics
+//                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67},
+//   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "Standard",
+//              "contact_sheet": false, "contact_sheet_columns": 8}
+// }
+#pragma once
+
+#include "core/scene/camera_path.h"
+#include "core/scene/environment.h"
+#include "core/scene/mesh.h"
+#include "core/material/sand_material.h"
+#include "metrics/metric_registry.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace glintlab {
+
+struct VariantSpec {
+  std::string name;
+  std::string aa = "none";  // "none" | "ssaa"
+  int ssaa_grid = 1;        // ssaa: grid x grid stratified samples per pixel
+  std::string debug = "final";
+  core::SandParams material;  // experiment material + this variant's overrides
+  nlohmann::json material_json;  // the merged object (for hashing and the summary)
+
+  int samples_per_pixel() const { return aa == "ssaa" ? ssaa_grid * ssaa_grid : 1; }
+};
+
+struct ReferenceSpec {
+  bool enabled = true;
+  int grid = 16;  // grid x grid samples (DESIGN.md: 16 x 16 default)
+};
+
+struct OutputSpec {
+  bool exr = true;
+  bool png = true;
+  int every = 1;  // save images of every n-th frame (metrics are computed for all)
+  std::string display = "sRGB";
+  std::string view = "Standard";
+  bool contact_sheet = false;  // DIR/contact_sheet.png: rows = variants (+ reference), columns = saved frames
+  int contact_sheet_columns = 8;  // at most this many saved frames per row
+};
+
+struct ExperimentSpec {
+  std::string file;
+  std::string name;
+  std::string description;
+  int width = 640, height = 360;
+  int frames = 1;
+  std::string working_space = "lin_rec709";
+  core::MeshSpec mesh;
+  core::SkySpec sky;
+  std::string path_name;  // built-in name, file, or "inline"
+  core::CameraPath path;
+  nlohmann::json material_json;
+  std::vector<VariantSpec> variants;
+  ReferenceSpec reference;
+  std::vector<std::string> metrics;
+  metrics::MetricOptions metric_options;
+  OutputSpec output;
+  nlohmann::json source;  // the file's JSON as read (for hashing and the summary)
+
+  static ExperimentSpec load(const std::string& file);
+  static ExperimentSpec from_json(const nlohmann::json& j, const std::string& file);
+};
+
+// Built-in experiments: every *.json under GLINTLAB_EXPERIMENT_DIR (not paths/), named by its
+// path relative to it without extension ("default", "thesis/fig6-7-hdri-match").
+std::vector<std::string> builtin_experiment_names();
+// A name of a built-in experiment, or a path to a file.
+std::string resolve_experiment_path(const std::string& name_or_path);
+
+}  // namespace glintlab

@@ -1,0 +1,89 @@
+#include "experiments/spec/scene_setup.h"
+
+#include "core/scene/mesh.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace glintlab {
+
+core::Environment prepare_environment(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
+  core::Environment env = core::make_environment(spec.sky);
+  Image sky(env.sky.width, env.sky.height, 3);
+  sky.data = env.sky.rgb;
+  cm.convert(sky, env.sky.color_space, spec.working_space);
+  env.sky.rgb = std::move(sky.data);
+  env.sky.color_space = spec.working_space;
+  env.sun.color = cm.convert_color(env.sun.color, env.sun.color_space, spec.working_space);
+  env.sun.color_space = spec.working_space;
+  core::compute_sh_irradiance(env);
+  return env;
+}
+
+core::EnvironmentTexture environment_texture(const core::Environment& env) {
+  core::EnvironmentTexture tex;
+  tex.width = uint32_t(env.sky.width);
+  tex.height = uint32_t(env.sky.height);
+  for (const core::LatLong& m : core::build_mips(env.sky)) {
+    std::vector<float> rgba(size_t(m.width) * m.height * 4);
+    for (size_t i = 0; i < size_t(m.width) * m.height; ++i) {
+      rgba[4 * i + 0] = m.rgb[3 * i + 0];
+      rgba[4 * i + 1] = m.rgb[3 * i + 1];
+      rgba[4 * i + 2] = m.rgb[3 * i + 2];
+      rgba[4 * i + 3] = 1.0f;
+    }
+    tex.mips_rgba.push_back(std::move(rgba));
+  }
+  return tex;
+}
+
+core::SandParams to_working_space(core::SandParams p, const std::string& working_space,
+                                  const metrics::ColorManager& cm) {
+  auto conv = [&](std::array<double, 3>& c) {
+    glm::vec3 v = cm.convert_color(glm::vec3(float(c[0]), float(c[1]), float(c[2])), p.palette_space, working_space);
+    c = {std::max(0.0, double(v.x)), std::max(0.0, double(v.y)), std::max(0.0, double(v.z))};
+  };
+  for (auto& c : p.palette) conv(c);
+  conv(p.I_glints);
+  p.palette_space = working_space;
+  return p;
+}
+
+core::FrameUniforms frame_uniforms(const core::FrameCamera& cam, const core::Environment& env, int width, int height,
+                                   size_t env_mip_levels) {
+  core::FrameUniforms f;
+  f.model = glm::mat4(1.0f);
+  f.normal_matrix = glm::inverseTranspose(f.model);
+  f.prev_view_proj = cam.prev_view_proj_unjittered;
+  f.inv_view_proj = glm::inverse(cam.view_proj_unjittered);
+  f.camera_pos = glm::vec4(cam.position, float(cam.time));
+  float radius = glm::radians(env.sun.angular_diameter_deg) * 0.5f;
+  f.sun_dir = glm::vec4(env.sun.direction, radius);
+  f.sun_L = glm::vec4(env.sun.color * env.sun.intensity, 0.0f);
+  f.resolution = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
+  for (int i = 0; i < 9; ++i) f.env_sh[i] = glm::vec4(env.sh_irradiance[i], 0.0f);
+  f.env_params = glm::vec4(float(env_mip_levels), 1.0f, 0.0f, 0.0f);
+  return f;
+}
+
+core::SandFeatures distance_range(const ExperimentSpec& spec, const core::Mesh& mesh) {
+  core::SandFeatures f;
+  double lo = INFINITY, hi = 0;
+  for (int k = 0; k < spec.frames; ++k) {
+    glm::dvec3 e = glm::dvec3(spec.path.at(spec.path.frame_time(k)).position);
+    glm::dvec3 bmin(mesh.bounds_min), bmax(mesh.bounds_max);
+    glm::dvec3 nearest = glm::clamp(e, bmin, bmax);
+    lo = std::min(lo, glm::length(e - nearest));
+    glm::dvec3 farthest(std::abs(e.x - bmin.x) > std::abs(e.x - bmax.x) ? bmin.x : bmax.x,
+                        std::abs(e.y - bmin.y) > std::abs(e.y - bmax.y) ? bmin.y : bmax.y,
+                        std::abs(e.z - bmin.z) > std::abs(e.z - bmax.z) ? bmin.z : bmax.z);
+    hi = std::max(hi, glm::length(e - farthest));
+  }
+  f.min_distance = lo;
+  f.max_distance = hi;
+  return f;
+}
+
+}  // namespace glintlab

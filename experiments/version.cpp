@@ -1,4 +1,0 @@
-#include "experiments/version.h"
-namespace glintlab {
-const char* version() { return "0.1.0"; }
-}  // namespace glintlab

@@ -1,0 +1,152 @@
+#include "metrics/color/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+namespace glintlab::metrics {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string oiio_error(const OIIO::ImageOutput* out) {
+  std::string e = out ? out->geterror() : std::string();
+  if (e.empty()) e = OIIO::geterror();
+  return e.empty() ? std::string("unknown OpenImageIO error") : e;
+}
+
+void check_image(const std::string& path, const Image& img) {
+  if (img.width <= 0 || img.height <= 0 || img.channels <= 0 ||
+      img.data.size() != img.pixel_count() * static_cast<std::size_t>(img.channels))
+    throw std::invalid_argument("cannot write '" + path + "': invalid image (" + std::to_string(img.width) + "x" +
+                                std::to_string(img.height) + "x" + std::to_string(img.channels) + ", " +
+                                std::to_string(img.data.size()) + " values)");
+}
+
+std::vector<std::string> channel_names(int channels) {
+  switch (channels) {
+    case 1: return {"Y"};
+    case 2: return {"Y", "A"};
+    case 3: return {"R", "G", "B"};
+    case 4: return {"R", "G", "B", "A"};
+    default: {
+      std::vector<std::string> n = {"R", "G", "B", "A"};
+      for (int c = 4; c < channels; ++c) n.push_back("channel" + std::to_string(c));
+      return n;
+    }
+  }
+}
+
+// Writes through `format` into path.tmp-<pid> and renames over path; on any failure the temporary
+// file is removed and the existing file at path is untouched.
+void write_atomic(const std::string& path, const char* format, OIIO::ImageSpec spec, OIIO::TypeDesc data_type,
+                  const void* data) {
+  const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+  auto fail = [&](const std::string& why) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write '" + path + "': " + why);
+  };
+  {
+    auto out = OIIO::ImageOutput::create(format);
+    if (!out) fail(std::string("no OpenImageIO writer for ") + format + ": " + oiio_error(nullptr));
+    if (!out->open(tmp, spec)) fail(oiio_error(out.get()));
+    if (!out->write_image(data_type, data)) {
+      std::string e = oiio_error(out.get());
+      out->close();
+      fail(e);
+    }
+    if (!out->close()) fail(oiio_error(out.get()));
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) fail("rename from '" + tmp + "' failed: " + ec.message());
+}
+
+void write_exr_impl(const std::string& path, const Image& img, const std::array<float, 8>* chromaticities,
+                    bool half) {
+  check_image(path, img);
+  OIIO::ImageSpec spec(img.width, img.height, img.channels, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  spec.channelnames = channel_names(img.channels);
+  spec.alpha_channel = (img.channels == 2) ? 1 : (img.channels >= 4 ? 3 : -1);
+  spec.attribute("compression", "zip");
+  if (chromaticities)
+    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities->data());
+  write_atomic(path, "exr", spec, OIIO::TypeDesc::FLOAT, img.data.data());
+}
+
+}  // namespace
+
+Image read_image(const std::string& path, std::string* colorspace_tag) {
+  // Values as stored: no premultiplication of unassociated (PNG, TIFF) alpha.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    std::string e = OIIO::geterror();
+    throw std::runtime_error("cannot read image '" + path + "': " + (e.empty() ? "unknown error" : e));
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  const int w = spec.width, h = spec.height, n = spec.nchannels;
+  if (w <= 0 || h <= 0 || n <= 0) throw std::runtime_error("cannot read image '" + path + "': empty image");
+  std::vector<float> raw(static_cast<std::size_t>(w) * h * n);
+  if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, raw.data())) {
+    std::string e = in->geterror();
+    throw std::runtime_error("cannot read image '" + path + "': " + (e.empty() ? "read failed" : e));
+  }
+  if (colorspace_tag) *colorspace_tag = spec.get_string_attribute("oiio:ColorSpace");
+  in->close();
+
+  int alpha = spec.alpha_channel;
+  if (alpha < 0 && n == 2) alpha = 1;  // grey + alpha
+  if (alpha < 0 && n >= 4) alpha = 3;
+  Image img(w, h, 4, 1.0f);
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+    const float* s = raw.data() + i * n;
+    float* d = img.data.data() + i * 4;
+    if (n >= 3) {
+      d[0] = s[0], d[1] = s[1], d[2] = s[2];
+    } else {
+      d[0] = d[1] = d[2] = s[0];
+    }
+    if (alpha > 0 && alpha < n) d[3] = s[alpha];
+  }
+  return img;
+}
+
+void write_exr(const std::string& path, const Image& img, const std::array<float, 8>& chromaticities, bool half) {
+  write_exr_impl(path, img, &chromaticities, half);
+}
+
+void write_exr_data(const std::string& path, const Image& img, bool half) {
+  write_exr_impl(path, img, nullptr, half);
+}
+
+void write_png(const std::string& path, const Image& display_encoded) {
+  const Image& img = display_encoded;
+  check_image(path, img);
+  if (img.channels > 4)
+    throw std::invalid_argument("cannot write '" + path + "': PNG takes 1 to 4 channels, image has " +
+                                std::to_string(img.channels));
+  std::vector<std::uint8_t> q(img.data.size());
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const float v = img.data[i];
+    const float c = (v > 0.0f) ? std::min(v, 1.0f) : 0.0f;  // NaN -> 0
+    q[i] = static_cast<std::uint8_t>(std::lround(c * 255.0f));
+  }
+  OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::UINT8);
+  spec.alpha_channel = (img.channels == 2) ? 1 : (img.channels == 4 ? 3 : -1);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // values as given: no un-premultiplication
+  write_atomic(path, "png", spec, OIIO::TypeDesc::UINT8, q.data());
+}
+
+}  // namespace glintlab::metrics

@@ -1,0 +1,196 @@
+// Procedural meshes: vertex layout, frame invariants, winding, analytic surfaces, convergence.
+#include "core/util/json_check.h"
+#include "core/scene/mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+using namespace glintlab;
+using namespace glintlab::core;
+
+namespace {
+
+MeshSpec spec_of(const std::string& type, int tess, float size = 10.0f) {
+  MeshSpec s;
+  s.type = type;
+  s.tessellation = tess;
+  s.size = size;
+  if (type == "wavy") s.amplitude = 1.0f, s.wavelength = 6.0f;
+  if (type == "dunes") s.amplitude = 1.5f, s.wavelength = 8.0f;
+  if (type == "sphere") s.layers = 2, s.layer_spacing = 0.2f;
+  return s;
+}
+
+// Invariants every mesh must satisfy. Normals are compared with the finite-difference geometric
+// normal of the surface at each vertex: the area-weighted mean of the normals of the triangles
+// around it (vertices with a full ring of >= 6 triangles; border and seam rings are one-sided).
+// `min_dot` bounds the angle between the two; every triangle must also face the side its vertex
+// normals point to (CCW winding seen from outside).
+void check_invariants(const Mesh& m, double min_dot) {
+  ASSERT_FALSE(m.vertices.empty());
+  ASSERT_EQ(m.indices.size() % 3, 0u);
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const Vertex& v : m.vertices) {
+    EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(v.normal, glm::vec3(v.tangent)), 0.0f, 1e-5f);
+    EXPECT_TRUE(v.tangent.w == 1.0f || v.tangent.w == -1.0f);
+    EXPECT_GE(v.uv.x, 0.0f);
+    EXPECT_LE(v.uv.x, 1.0f);
+    EXPECT_GE(v.uv.y, 0.0f);
+    EXPECT_LE(v.uv.y, 1.0f);
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  EXPECT_EQ(m.bounds_min, lo);
+  EXPECT_EQ(m.bounds_max, hi);
+
+  std::vector<glm::dvec3> ring(m.vertices.size(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> ring_dpdu(m.vertices.size(), glm::dvec3(0.0));
+  std::vector<int> ring_count(m.vertices.size(), 0);
+  int back_facing = 0, bad_sign = 0;
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    uint32_t id[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
+    for (uint32_t i : id) ASSERT_LT(i, m.vertices.size());
+    const Vertex &a = m.vertices[id[0]], &b = m.vertices[id[1]], &c = m.vertices[id[2]];
+    glm::dvec3 e1 = glm::dvec3(b.position - a.position), e2 = glm::dvec3(c.position - a.position);
+    glm::dvec3 g = glm::cross(e1, e2);  // CCW -> along the outward normal, length = 2 area
+    ASSERT_GT(glm::length(g), 0.0) << "degenerate triangle " << t / 3;
+    // d(position)/du and /dv of the triangle (finite differences in uv).
+    glm::dvec2 d1 = glm::dvec2(b.uv - a.uv), d2 = glm::dvec2(c.uv - a.uv);
+    double det = d1.x * d2.y - d2.x * d1.y;
+    glm::dvec3 dpdu = (e1 * d2.y - e2 * d1.y) / det, dpdv = (e2 * d1.x - e1 * d2.x) / det;
+    for (uint32_t i : id) ring[i] += g, ring_dpdu[i] += dpdu * glm::length(g), ring_count[i]++;
+    for (const Vertex* v : {&a, &b, &c}) {
+      glm::dvec3 n(v->normal), tg(v->tangent);
+      if (glm::dot(n, g) <= 0.0) ++back_facing;
+      if (glm::dot(double(v->tangent.w) * glm::cross(n, tg), dpdv) <= 0.0) ++bad_sign;
+    }
+  }
+  double worst = 1.0, worst_t = 1.0;
+  int full_rings = 0;
+  for (size_t i = 0; i < m.vertices.size(); ++i) {
+    if (ring_count[i] < 6) continue;
+    ++full_rings;
+    glm::dvec3 n(m.vertices[i].normal), du = ring_dpdu[i] - n * glm::dot(n, ring_dpdu[i]);
+    worst = std::min(worst, glm::dot(glm::normalize(ring[i]), n));
+    worst_t = std::min(worst_t, glm::dot(glm::normalize(du), glm::dvec3(m.vertices[i].tangent)));
+  }
+  EXPECT_GT(full_rings, 0);
+  EXPECT_GE(worst, min_dot) << "vertex normals disagree with the geometric normals of the triangles";
+  EXPECT_GE(worst_t, min_dot) << "tangents are not along d(position)/du";
+  EXPECT_EQ(back_facing, 0) << "triangles wound against their vertex normals";
+  EXPECT_EQ(bad_sign, 0) << "tangent.w does not give the bitangent along d(position)/dv";
+}
+
+}  // namespace
+
+TEST(Mesh, VertexLayoutIsTheVertexBufferLayout) {
+  EXPECT_EQ(sizeof(Vertex), 48u);
+  EXPECT_EQ(offsetof(Vertex, position), 0u);
+  EXPECT_EQ(offsetof(Vertex, normal), 12u);
+  EXPECT_EQ(offsetof(Vertex, tangent), 24u);
+  EXPECT_EQ(offsetof(Vertex, uv), 40u);
+}
+
+TEST(Mesh, PlaneIsAnUpFacingSquare) {
+  Mesh m = build_mesh(spec_of("plane", 4, 6.0f));
+  check_invariants(m, 0.9999f);
+  EXPECT_EQ(m.vertices.size(), 25u);
+  EXPECT_EQ(m.indices.size(), 4u * 4u * 6u);
+  EXPECT_EQ(m.bounds_min, glm::vec3(-3.0f, 0.0f, -3.0f));
+  EXPECT_EQ(m.bounds_max, glm::vec3(3.0f, 0.0f, 3.0f));
+  for (const Vertex& v : m.vertices) EXPECT_EQ(v.normal, glm::vec3(0, 1, 0));
+}
+
+TEST(Mesh, WavyFramesAndWindingAgreeWithGeometry) { check_invariants(build_mesh(spec_of("wavy", 96)), 0.995f); }
+TEST(Mesh, SphereFramesAndWindingAgreeWithGeometry) { check_invariants(build_mesh(spec_of("sphere", 64)), 0.99f); }
+// Ridged noise has sharp crests, so the ring of triangles bends more there than on the wave.
+TEST(Mesh, DunesFramesAndWindingAgreeWithGeometry) { check_invariants(build_mesh(spec_of("dunes", 128, 20.0f)), 0.95); }
+
+TEST(Mesh, WavySurfaceSatisfiesTheAnalyticHeightAndNormal) {
+  MeshSpec s = spec_of("wavy", 64);
+  Mesh m = build_mesh(s);
+  const double k = 2.0 * M_PI / s.wavelength;
+  for (const Vertex& v : m.vertices) {
+    double x = v.position.x;
+    EXPECT_NEAR(v.position.y, s.amplitude * std::sin(k * x), 1e-5);
+    glm::dvec3 n = glm::normalize(glm::dvec3(-s.amplitude * k * std::cos(k * x), 1.0, 0.0));
+    EXPECT_GT(glm::dot(n, glm::dvec3(v.normal)), 1.0 - 1e-6);
+  }
+  EXPECT_NEAR(m.bounds_max.y, s.amplitude, 0.01);
+  EXPECT_NEAR(m.bounds_min.y, -s.amplitude, 0.01);
+}
+
+TEST(Mesh, SphereAreaConvergesTo4PiR2AtSecondOrder) {
+  auto rel_error = [](int tess) {
+    MeshSpec s = spec_of("sphere", tess, 3.0f);
+    s.layers = 1;
+    Mesh m = build_mesh(s);
+    double area = 0.0;
+    for (size_t t = 0; t < m.indices.size(); t += 3) {
+      glm::dvec3 a(m.vertices[m.indices[t]].position), b(m.vertices[m.indices[t + 1]].position),
+          c(m.vertices[m.indices[t + 2]].position);
+      area += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    return std::fabs(area - 4.0 * M_PI * 1.5 * 1.5) / (4.0 * M_PI * 1.5 * 1.5);
+  };
+  double e32 = rel_error(32), e64 = rel_error(64), e128 = rel_error(128);
+  EXPECT_LT(e128, 1e-3);
+  EXPECT_GT(e32 / e64, 3.0);  // O(h²): halving the edge length divides the error by ~4
+  EXPECT_LT(e32 / e64, 5.0);
+  EXPECT_GT(e64 / e128, 3.0);
+}
+
+TEST(Mesh, LayeredSphereHasConcentricShells) {
+  MeshSpec s = spec_of("sphere", 16, 4.0f);
+  s.layers = 3;
+  s.layer_spacing = 0.25f;
+  Mesh m = build_mesh(s);
+  const size_t per_shell = m.vertices.size() / 3;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(glm::length(m.vertices[k * per_shell + 5].position), 2.0 * (1.0 - 0.25 * k), 1e-5);
+}
+
+TEST(Mesh, DunesAreDeterministicPerSeedAndBounded) {
+  MeshSpec s = spec_of("dunes", 32, 20.0f);
+  Mesh a = build_mesh(s), b = build_mesh(s);
+  s.seed = 2;
+  Mesh c = build_mesh(s);
+  ASSERT_EQ(a.vertices.size(), c.vertices.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < a.vertices.size(); ++i) {
+    EXPECT_EQ(a.vertices[i].position, b.vertices[i].position);
+    EXPECT_GE(a.vertices[i].position.y, 0.0f);
+    EXPECT_LE(a.vertices[i].position.y, s.amplitude);
+    differ += a.vertices[i].position.y != c.vertices[i].position.y;
+  }
+  EXPECT_GT(differ, a.vertices.size() / 2);
+  EXPECT_GT(a.bounds_max.y - a.bounds_min.y, 0.2f * s.amplitude);  // not flat
+}
+
+TEST(Mesh, SpecFromJsonValidatesPerType) {
+  nlohmann::json ok = {{"type", "dunes"}, {"size", 40}, {"tessellation", 64}, {"seed", 7}};
+  JsonReader r(ok, "scene.json", "mesh");
+  MeshSpec s = MeshSpec::from_json(r);
+  EXPECT_EQ(s.type, "dunes");
+  EXPECT_EQ(s.size, 40.0f);
+  EXPECT_EQ(s.seed, 7u);
+
+  nlohmann::json bad = {{"type", "sphere"}, {"amplitude", 2}};  // amplitude is not a sphere key
+  JsonReader rb(bad, "scene.json", "mesh");
+  try {
+    MeshSpec::from_json(rb);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh.amplitude"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("scene.json"), std::string::npos) << e.what();
+  }
+  nlohmann::json bad_type = {{"type", "torus"}};
+  JsonReader rt(bad_type, "scene.json", "mesh");
+  EXPECT_THROW(MeshSpec::from_json(rt), ConfigError);
+  EXPECT_THROW(build_mesh(spec_of("torus", 4)), std::invalid_argument);
+}

@@ -1,0 +1,196 @@
+// `glintlab run` end to end on lavapipe (validation on): every metric for
+// every frame and variant in frames.csv, the summary, the reference cache
+// (reuse, corruption detected and rebuilt), and bad input.
+#include "experiments/runner/reference_cache.h"
+#include "experiments/runner/runner.h"
+#include "metrics/color/image_io.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace glintlab;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("glintlab_runner_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> row;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) row.push_back(cell);
+    if (!line.empty() && line.back() == ',') row.push_back("");
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+const char* kTiny = R"({
+  "name": "tiny",
+  "resolution": [64, 36],
+  "scene": {"mesh": {"type": "wavy", "size": 10, "tessellation": 16, "amplitude": 0.4, "wavelength": 5}},
+  "camera_path": {"type": "orbit", "fps": 30, "frames": 3, "center": [0, 0, 0], "radius": 3.6,
+                  "height": 1.7, "start_deg": 180, "end_deg": 190, "fov": 40},
+  "material": {"preset": "thesis-default", "noise_scale": 400, "glint_sigma": 0.002, "sigmoid_b": 6},
+  "variants": [{"name": "no-aa"}, {"name": "ssaa", "aa": "ssaa", "ssaa_grid": 2}],
+  "reference": {"grid": 3},
+  "output": {"exr": true, "png": true, "every": 2, "contact_sheet": true}
+})";
+
+}  // namespace
+
+TEST(Runner, RunWritesEveryMetricForEveryFrameAndVariant) {
+  fs::path dir = fresh_dir("run");
+  std::ofstream(dir / "tiny.json") << kTiny;
+  RunOptions opt;
+  opt.experiment = (dir / "tiny.json").string();
+  opt.out_dir = (dir / "out").string();
+  opt.cache_dir = (dir / "cache").string();
+  opt.validation = true;
+  std::ostringstream log;
+  // Exit code 0 also means the validation layer reported nothing.
+  ASSERT_EQ(run_experiment(opt, log), 0) << log.str();
+
+  auto rows = read_csv(dir / "out" / "frames.csv");
+  ASSERT_EQ(rows.size(), 1u + 2u * 3u);  // header + variants x frames
+  const auto& h = rows[0];
+  auto col = [&](const std::string& name) {
+    auto it = std::find(h.begin(), h.end(), name);
+    EXPECT_NE(it, h.end()) << name;
+    return size_t(it - h.begin());
+  };
+  for (const char* m : {"deltaE2000", "deltaEITP", "flip", "psnr", "relative", "gpu_ms", "temporal_error",
+                        "flicker_ratio", "pooled_bias_8", "glint_density_ref", "nan_px"})
+    col(m);
+  for (size_t r = 1; r < rows.size(); ++r) {
+    ASSERT_EQ(rows[r].size(), h.size()) << "row " << r;
+    int frame = std::stoi(rows[r][col("frame")]);
+    for (const char* m : {"deltaE2000", "deltaEITP", "flip", "relative"}) {
+      double v = std::stod(rows[r][col(m)]);
+      EXPECT_TRUE(std::isfinite(v) && v >= 0) << m << " row " << r;
+    }
+    EXPECT_GT(std::stod(rows[r][col("gpu_ms")]), 0.0);
+    EXPECT_EQ(rows[r][col("nan_px")], "0");
+    EXPECT_EQ(rows[r][col("negative_px")], "0");
+    // Temporal metrics need a previous frame.
+    EXPECT_EQ(rows[r][col("flicker_ratio")].empty(), frame == 0) << "row " << r;
+    EXPECT_EQ(rows[r][col("reference_cached")], "0");
+  }
+  // Supersampling gets closer to the footprint integral than one sample.
+  auto summary = nlohmann::json::parse(std::ifstream(dir / "out" / "summary.json"));
+  double e1 = summary["variants"]["no-aa"]["metrics"]["deltaE2000"]["mean"];
+  double e4 = summary["variants"]["ssaa"]["metrics"]["deltaE2000"]["mean"];
+  EXPECT_LT(e4, e1);
+  EXPECT_EQ(summary["references"][0]["spp"], 9);
+  EXPECT_EQ(summary["references"][0]["frames_rendered"], 3);
+  EXPECT_TRUE(fs::exists(dir / "out" / "no-aa" / "frame_0000.exr"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "no-aa" / "frame_0002.png"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "no-aa" / "frame_0001.png"));  // every = 2
+  EXPECT_FALSE(fs::exists(dir / "out" / "frames.csv.partial"));
+  // Contact sheet: rows reference, no-aa, ssaa; columns the saved frames 0 and 2 (64x36 tiles,
+  // 4 px gaps, 20 px labels; layout of experiments/contact_sheet.h).
+  Image sheet = metrics::read_image((dir / "out" / "contact_sheet.png").string());
+  EXPECT_EQ(sheet.width, 4 + 2 * (64 + 4));
+  EXPECT_EQ(sheet.height, 4 + 3 * (20 + 36 + 4));
+
+  // Second run: every reference frame comes from the cache, same numbers.
+  std::ostringstream log2;
+  ASSERT_EQ(run_experiment(opt, log2), 0) << log2.str();
+  auto rows2 = read_csv(dir / "out" / "frames.csv");
+  for (size_t r = 1; r < rows2.size(); ++r) {
+    EXPECT_EQ(rows2[r][col("reference_cached")], "1");
+    EXPECT_EQ(rows2[r][col("deltaE2000")], rows[r][col("deltaE2000")]);
+  }
+
+  // Corrupt one cache entry: detected, reported, rebuilt; results unchanged.
+  fs::path victim;
+  for (const auto& e : fs::directory_iterator(dir / "cache")) victim = e.path();
+  ASSERT_FALSE(victim.empty());
+  {
+    std::fstream f(victim, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(200);
+    f.put('\x7f');
+  }
+  std::ostringstream log3;
+  ASSERT_EQ(run_experiment(opt, log3), 0) << log3.str();
+  EXPECT_NE(log3.str().find("corrupt reference cache entry"), std::string::npos) << log3.str();
+  auto rows3 = read_csv(dir / "out" / "frames.csv");
+  for (size_t r = 1; r < rows3.size(); ++r) EXPECT_EQ(rows3[r][col("deltaE2000")], rows[r][col("deltaE2000")]);
+}
+
+TEST(Runner, BadExperimentIsExitCodeTwoWithFileAndKey) {
+  fs::path dir = fresh_dir("bad");
+  nlohmann::json j = nlohmann::json::parse(kTiny);
+  j["variants"][1]["ssaa_grid"] = 99;
+  std::ofstream(dir / "bad.json") << j.dump();
+  RunOptions opt;
+  opt.experiment = (dir / "bad.json").string();
+  opt.out_dir = (dir / "out").string();
+  std::ostringstream log;
+  EXPECT_EQ(run_experiment(opt, log), 2);
+  EXPECT_NE(log.str().find("bad.json"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("variants[1].ssaa_grid"), std::string::npos) << log.str();
+  EXPECT_FALSE(fs::exists(dir / "out" / "frames.csv"));
+}
+
+TEST(ReferenceCache, RoundTripIsExactAndTruncationIsDetected) {
+  fs::path dir = fresh_dir("cache");
+  ReferenceCache cache(dir.string());
+  Image img(5, 3, 4);
+  for (size_t i = 0; i < img.data.size(); ++i) img.data[i] = float(i) * 0.37f - 3.0f;
+  std::string key(32, 'a');
+  cache.store(key, img);
+  bool corrupt = true;
+  auto back = cache.load(key, &corrupt);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_FALSE(corrupt);
+  EXPECT_EQ(back->data, img.data);
+  EXPECT_FALSE(cache.load(std::string(32, 'b')).has_value());  // absent is not corrupt
+  fs::resize_file(cache.path_of(key), fs::file_size(cache.path_of(key)) - 4);
+  EXPECT_FALSE(cache.load(key, &corrupt).has_value());
+  EXPECT_TRUE(corrupt);
+  EXPECT_FALSE(fs::exists(cache.path_of(key)));  // removed so it is rebuilt
+}
+
+TEST(Runner, StaticCameraGivesIdenticalFramesAndNoFlicker) {
+  // With a static camera every frame is the same picture: the reference is a
+  // fixed quadrature and SSAA a fixed pattern, so nothing may change between
+  // frames and the flicker ratio is exactly 1 (both sequences static).
+  fs::path dir = fresh_dir("static");
+  nlohmann::json j = nlohmann::json::parse(kTiny);
+  j["camera_path"] = {{"type", "static"}, {"fps", 30}, {"frames", 3}, {"position", {0.5, 1.5, 3.0}},
+                      {"target", {0, 0, 0}}, {"fov", 40}};
+  j["output"] = {{"exr", true}, {"png", false}, {"every", 1}};
+  std::ofstream(dir / "static.json") << j.dump();
+  RunOptions opt;
+  opt.experiment = (dir / "static.json").string();
+  opt.out_dir = (dir / "out").string();
+  opt.cache_dir = (dir / "cache").string();
+  opt.validation = true;
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(opt, log), 0) << log.str();
+  for (const char* d : {"reference", "no-aa", "ssaa"}) {
+    Image f0 = metrics::read_image((dir / "out" / d / "frame_0000.exr").string());
+    Image f2 = metrics::read_image((dir / "out" / d / "frame_0002.exr").string());
+    EXPECT_EQ(f0.data, f2.data) << d;
+  }
+  auto summary = nlohmann::json::parse(std::ifstream(dir / "out" / "summary.json"));
+  for (const char* v : {"no-aa", "ssaa"}) {
+    EXPECT_EQ(summary["variants"][v]["flicker"]["flicker_ratio_of_sums"], 1.0) << v;
+    EXPECT_EQ(summary["variants"][v]["flicker"]["temporal_error_mean"], 0.0) << v;
+  }
+}

@@ -1,0 +1,262 @@
+// ExperimentSpec::from_json / load (experiments/experiment_spec.h): malformed experiment files are
+// rejected with a ConfigError that names the file and the key path; every shipped experiment loads;
+// a minimal spec gets the documented defaults.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "core/util/json_check.h"
+#include "experiments/spec/experiment_spec.h"
+#include "metrics/metric_registry.h"
+
+namespace fs = std::filesystem;
+using glintlab::ConfigError;
+using glintlab::ExperimentSpec;
+using nlohmann::json;
+
+namespace {
+
+const char* kFile = "experiments/under-test.json";
+
+// The smallest valid experiment: everything else defaulted.
+json minimal() {
+  return json::parse(R"({
+    "scene": {"mesh": {"type": "plane"}},
+    "camera_path": {"type": "static", "fps": 30, "frames": 4,
+                    "position": [0, 2, -4], "target": [0, 0, 0], "fov": 40},
+    "variants": [{"name": "a"}]
+  })");
+}
+
+// from_json(j) must throw a ConfigError whose message names the file and contains every `needle`
+// (the key path, and where useful the offending value).
+void expect_rejected(const json& j, const std::vector<std::string>& needles) {
+  try {
+    ExperimentSpec::from_json(j, kFile);
+    ADD_FAILURE() << "accepted: " << j.dump();
+  } catch (const ConfigError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find(kFile), std::string::npos) << "message does not name the file: " << msg;
+    for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "missing \"" << n << "\" in: " << msg;
+  }
+}
+
+struct TempFile {
+  fs::path path;
+  explicit TempFile(const std::string& text) {
+    path = fs::temp_directory_path() / ("glintlab-spec-" + std::to_string(::getpid()) + "-" +
+                                        std::to_string(counter()++) + ".json");
+    std::ofstream(path) << text;
+  }
+  ~TempFile() {
+    std::error_code ec;
+    fs::remove(path, ec);
+  }
+  static int& counter() {
+    static int n = 0;
+    return n;
+  }
+};
+
+}  // namespace
+
+TEST(ExperimentSpec, MinimalSpecGetsDocumentedDefaults) {
+  ExperimentSpec s = ExperimentSpec::from_json(minimal(), kFile);
+  EXPECT_EQ(s.name, "under-test");  // file stem
+  EXPECT_EQ(s.width, 640);
+  EXPECT_EQ(s.height, 360);
+  EXPECT_EQ(s.frames, 4);  // all of the path's frames
+  EXPECT_EQ(s.path_name, "inline");
+  EXPECT_EQ(s.working_space, "lin_rec709");
+  EXPECT_TRUE(s.reference.enabled);
+  EXPECT_EQ(s.reference.grid, 16);
+  EXPECT_EQ(s.metrics, glintlab::metrics::metric_names());
+  EXPECT_TRUE(s.output.exr);
+  EXPECT_TRUE(s.output.png);
+  EXPECT_EQ(s.output.every, 1);
+  ASSERT_EQ(s.variants.size(), 1u);
+  const auto& v = s.variants[0];
+  EXPECT_EQ(v.aa, "none");
+  EXPECT_EQ(v.samples_per_pixel(), 1);
+  EXPECT_EQ(v.debug, "final");
+  // No material: the thesis-default preset (Appendix A values).
+  const auto def = glintlab::core::SandParams::preset("thesis-default");
+  EXPECT_EQ(v.material.SSS, def.SSS);
+  EXPECT_EQ(v.material.noise_scale, def.noise_scale);
+}
+
+TEST(ExperimentSpec, VariantOverridesMergeOverExperimentMaterial) {
+  json j = minimal();
+  j["material"] = {{"preset", "thesis-hdri-match"}, {"noise_scale", 500}};
+  j["variants"] = json::parse(R"([{"name": "base"}, {"name": "sss", "material": {"SSS": 0.25}},
+                                  {"name": "ss", "aa": "ssaa", "ssaa_grid": 3}])");
+  ExperimentSpec s = ExperimentSpec::from_json(j, kFile);
+  ASSERT_EQ(s.variants.size(), 3u);
+  const auto hdri = glintlab::core::SandParams::preset("thesis-hdri-match");
+  EXPECT_EQ(s.variants[0].material.SSS, hdri.SSS);
+  EXPECT_EQ(s.variants[0].material.noise_scale, 500);
+  EXPECT_EQ(s.variants[1].material.SSS, 0.25);
+  EXPECT_EQ(s.variants[1].material.noise_scale, 500);  // the experiment's override survives
+  EXPECT_EQ(s.variants[1].material.R_s, hdri.R_s);     // the preset's value survives
+  EXPECT_EQ(s.variants[2].samples_per_pixel(), 9);
+}
+
+TEST(ExperimentSpec, RejectsUnknownTopLevelKey) {
+  json j = minimal();
+  j["resolutoin"] = {320, 180};
+  expect_rejected(j, {"resolutoin", "unknown key"});
+}
+
+TEST(ExperimentSpec, RejectsUnknownMeshKey) {
+  json j = minimal();
+  j["scene"]["mesh"]["wobble"] = 3;
+  expect_rejected(j, {"scene.mesh.wobble"});
+}
+
+TEST(ExperimentSpec, RejectsResolutionOfWrongType) {
+  json j = minimal();
+  j["resolution"] = "640x360";
+  expect_rejected(j, {"resolution"});
+  j["resolution"] = {640};
+  expect_rejected(j, {"resolution"});
+  j["resolution"] = {640.5, 360};
+  expect_rejected(j, {"resolution"});
+}
+
+TEST(ExperimentSpec, RejectsResolutionOutOfRange) {
+  json j = minimal();
+  j["resolution"] = {0, 360};
+  expect_rejected(j, {"resolution", "out of range"});
+  j["resolution"] = {640, 16385};
+  expect_rejected(j, {"resolution", "out of range"});
+}
+
+TEST(ExperimentSpec, RejectsMissingOrEmptyVariants) {
+  json j = minimal();
+  j.erase("variants");
+  expect_rejected(j, {"variants", "missing"});
+  j["variants"] = json::array();
+  expect_rejected(j, {"variants"});
+}
+
+TEST(ExperimentSpec, RejectsDuplicateVariantNames) {
+  json j = minimal();
+  j["variants"] = json::parse(R"([{"name": "a"}, {"name": "b"}, {"name": "a", "aa": "ssaa"}])");
+  expect_rejected(j, {"variants[2].name", "\"a\""});
+}
+
+TEST(ExperimentSpec, RejectsVariantNameWithSlash) {
+  json j = minimal();
+  j["variants"] = json::parse(R"([{"name": "ok"}, {"name": "a/b"}])");
+  expect_rejected(j, {"variants[1].name"});
+}
+
+TEST(ExperimentSpec, RejectsUnknownAaMethod) {
+  json j = minimal();
+  j["variants"][0]["aa"] = "fxaa";
+  expect_rejected(j, {"variants[0].aa", "fxaa", "ssaa"});
+}
+
+TEST(ExperimentSpec, RejectsUnknownDebugOutput) {
+  json j = minimal();
+  j["variants"][0]["debug"] = "normals";
+  expect_rejected(j, {"variants[0].debug", "normals", "sigmoid"});  // lists the allowed outputs
+}
+
+TEST(ExperimentSpec, RejectsUnknownMetric) {
+  json j = minimal();
+  j["metrics"] = {"psnr", "ssim"};
+  expect_rejected(j, {"metrics", "ssim"});
+}
+
+TEST(ExperimentSpec, RejectsBadCameraPathName) {
+  json j = minimal();
+  j["camera_path"] = "no-such-path";
+  expect_rejected(j, {"camera_path", "no-such-path"});
+  j["camera_path"] = 7;
+  expect_rejected(j, {"camera_path"});
+}
+
+TEST(ExperimentSpec, RejectsMoreFramesThanThePath) {
+  json j = minimal();  // the inline path has 4 frames
+  j["frames"] = 4;
+  EXPECT_EQ(ExperimentSpec::from_json(j, kFile).frames, 4);
+  j["frames"] = 5;
+  expect_rejected(j, {"frames", "out of range"});
+}
+
+TEST(ExperimentSpec, RejectsMaterialOverrideOutOfRangeUnderVariant) {
+  json j = minimal();
+  j["variants"] = json::parse(R"([{"name": "a"}, {"name": "b", "material": {"SSS": 2}}])");
+  expect_rejected(j, {"variants[1].material.SSS", "out of range"});
+}
+
+TEST(ExperimentSpec, LoadRejectsMalformedJsonNamingTheFile) {
+  TempFile f(R"({"scene": {"mesh": {"type": "plane"}}, "variants": [ {"name": "a"} )");
+  try {
+    ExperimentSpec::load(f.path.string());
+    ADD_FAILURE() << "malformed JSON accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(f.path.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST(ExperimentSpec, LoadErrorsNameTheLoadedFile) {
+  json j = minimal();
+  j["variants"][0]["aa"] = "fxaa";
+  TempFile f(j.dump(2));
+  try {
+    ExperimentSpec::load(f.path.string());
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find(f.path.string()), std::string::npos) << msg;
+    EXPECT_NE(msg.find("variants[0].aa"), std::string::npos) << msg;
+  }
+}
+
+// Keeps the shipped experiments valid: every *.json under experiments/ (recursively; camera paths
+// in experiments/paths/ are not experiments) must load.
+TEST(ExperimentSpec, EveryShippedExperimentLoads) {
+  const fs::path root(GLINTLAB_EXPERIMENT_DIR);
+  std::vector<fs::path> files;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    if (!e.is_regular_file() || e.path().extension() != ".json") continue;
+    const fs::path rel = e.path().lexically_relative(root);
+    if (!rel.empty() && *rel.begin() == "paths") continue;
+    files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_FALSE(files.empty()) << "no experiments found under " << root;
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.string());
+    try {
+      ExperimentSpec s = ExperimentSpec::load(f.string());
+      EXPECT_FALSE(s.variants.empty());
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+}
+
+TEST(ExperimentSpec, MetricOptionsAreValidated) {
+  json j = minimal();
+  j["metric_options"] = {{"view", "sRGB"}};
+  expect_rejected(j, {"metric_options.view", "DISPLAY/VIEW"});
+  j["metric_options"] = {{"flip", "medium"}};
+  expect_rejected(j, {"metric_options.flip", "\"hdr\""});
+  j["metric_options"] = {{"itp_nits", -5}};
+  expect_rejected(j, {"metric_options.itp_nits"});
+  j["metric_options"] = {{"view", "sRGB/Standard"}, {"flip", "ldr"}, {"itp_nits", 203}};
+  ExperimentSpec s = ExperimentSpec::from_json(j, kFile);
+  EXPECT_EQ(s.metric_options.display_view, "sRGB/Standard");
+  EXPECT_FALSE(s.metric_options.flip_hdr);
+  EXPECT_EQ(s.metric_options.itp_luminance_nits, 203.0);
+}
