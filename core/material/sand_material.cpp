@@ -10,7 +10,6 @@ namespace glintlab::core {
 namespace {
 
 const std::vector<std::string> kColourSpaces = {"lin_rec709", "ACEScg", "ACES2065-1", "sRGB"};
-const std::vector<std::string> kGlintModels = {"kajs", "none"};
 const std::vector<std::string> kFresnelHalfVectors = {"macro_normal", "light_view"};
 const double kPi = 3.14159265358979323846;
 
@@ -111,7 +110,6 @@ void SandParams::validate() const {
   check(kSigB, sigmoid_b);
   check(kIor, ior);
   check_enum("palette_space", palette_space, kColourSpaces);
-  check_enum("glint_model", glint_model, kGlintModels);
   check_enum("fresnel_half_vector", fresnel_half_vector, kFresnelHalfVectors);
   if (appendix_compat & ~uint32_t(kSandCompatAll))
     throw ConfigError("sand: appendix_compat = " + std::to_string(appendix_compat) + " has unknown bits; allowed 0.." +
@@ -153,7 +151,8 @@ SandParams SandParams::from_json(JsonReader& r) {
   p.sigmoid_a = get(r, kSigA, p.sigmoid_a);
   p.sigmoid_b = get(r, kSigB, p.sigmoid_b);
   p.ior = get(r, kIor, p.ior);
-  p.glint_model = r.get_enum("glint_model", p.glint_model, kGlintModels);
+  p.glint_model = *enum_from_name(kGlintModelNames, r.get_enum("glint_model", enum_name(kGlintModelNames, p.glint_model),
+                                                             enum_names(kGlintModelNames)));
   p.fresnel_half_vector = r.get_enum("fresnel_half_vector", p.fresnel_half_vector, kFresnelHalfVectors);
   if (r.has("appendix_compat")) {
     const auto& j = r.raw("appendix_compat");
@@ -207,7 +206,7 @@ SandParamsGPU SandParams::pack() const {
   g.sig_b = float(sigmoid_b);
   g.appendix_compat = appendix_compat;
   g.fresnel_half_vector = fresnel_half_vector == "light_view" ? 1u : 0u;  // SAND_FRESNEL_*
-  g.glint_model = glint_model == "kajs" ? 1u : 0u;                       // SAND_GLINT_*
+  g.glint_model = uint32_t(glint_model);                                  // SAND_GLINT_*
   return g;
 }
 
@@ -225,7 +224,7 @@ std::vector<std::string> shader_defines(const SandParams& p, const SandFeatures&
     throw ConfigError("sand: features: need 0 <= min_distance <= max_distance, got [" + num(needs.min_distance) +
                       ", " + num(needs.max_distance) + "]");
   bool transmission = p.T > 0.0;
-  bool glints = p.glint_model != "none" && (p.I_glints[0] > 0 || p.I_glints[1] > 0 || p.I_glints[2] > 0);
+  bool glints = p.glint_model != GlintModel::None && (p.I_glints[0] > 0 || p.I_glints[1] > 0 || p.I_glints[2] > 0);
   bool far = true, close = true;
   if (debug == 0) {
     // eq. 4.38: the far weight is sig(dist), increasing in dist (a > 0)

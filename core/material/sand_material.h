@@ -4,6 +4,8 @@
 // compile-time pruning defines of shaders/sand/sand.glsl.
 #pragma once
 
+#include "core/material/glint_model.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -77,7 +79,7 @@ struct SandParams {
   double sigmoid_a = 2.0;     // eq. 4.37 stretch, (0, 1e4]
   double sigmoid_b = 1.3;     // eq. 4.37 shift, distance units, [0, 1e7]
   double ior = 1.458;         // grain IOR (silica), [1, 3]
-  std::string glint_model = "kajs";  // "kajs" | "none"
+  GlintModel glint_model = GlintModel::Kajs;  // kGlintModelNames
   std::string fresnel_half_vector = "macro_normal";  // "macro_normal" | "light_view"
   uint32_t appendix_compat = 0;  // SandCompat bits; 0 = chapter 4 everywhere
 

@@ -6,51 +6,25 @@
 namespace glintlab::core {
 
 // ---------------------------------------------------------------- Buffer
-Buffer::Buffer(const VkContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) : ctx_(&ctx), size_(size) {
+Buffer::Buffer(const VkContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage) : size_(size) {
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = size > 0 ? size : 4;
   bi.usage = usage;
   bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  vk_check(vkCreateBuffer(ctx.device(), &bi, nullptr, &buffer_), "vkCreateBuffer");
+  VkBuffer b;
+  vk_check(vkCreateBuffer(ctx.device(), &bi, nullptr, &b), "vkCreateBuffer");
+  buffer_ = BufferHandle(ctx.device(), b);
   VkMemoryRequirements req;
-  vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
+  vkGetBufferMemoryRequirements(ctx.device(), b, &req);
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = ctx.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
                                                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  try {
-    vk_check(vkAllocateMemory(ctx.device(), &ai, nullptr, &memory_), "vkAllocateMemory(buffer)");
-    vk_check(vkBindBufferMemory(ctx.device(), buffer_, memory_, 0), "vkBindBufferMemory");
-    vk_check(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
-  } catch (...) {
-    release();
-    throw;
-  }
-}
-
-Buffer::~Buffer() { release(); }
-
-Buffer& Buffer::operator=(Buffer&& o) noexcept {
-  if (this != &o) {
-    release();
-    ctx_ = std::exchange(o.ctx_, nullptr);
-    buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
-    memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
-    size_ = std::exchange(o.size_, 0);
-    mapped_ = std::exchange(o.mapped_, nullptr);
-  }
-  return *this;
-}
-
-void Buffer::release() {
-  if (!ctx_) return;
-  if (mapped_) vkUnmapMemory(ctx_->device(), memory_);
-  if (buffer_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
-  if (memory_) vkFreeMemory(ctx_->device(), memory_, nullptr);
-  buffer_ = VK_NULL_HANDLE;
-  memory_ = VK_NULL_HANDLE;
-  mapped_ = nullptr;
-  ctx_ = nullptr;
+  VkDeviceMemory m;
+  vk_check(vkAllocateMemory(ctx.device(), &ai, nullptr, &m), "vkAllocateMemory(buffer)");
+  memory_ = MemoryHandle(ctx.device(), m);
+  vk_check(vkBindBufferMemory(ctx.device(), b, m, 0), "vkBindBufferMemory");
+  vk_check(vkMapMemory(ctx.device(), m, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
 }
 
 void Buffer::upload(const void* data, size_t bytes, size_t offset) {
@@ -63,7 +37,7 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
 // ---------------------------------------------------------------- Image2D
 Image2D::Image2D(const VkContext& ctx, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
                  uint32_t mip_levels, VkImageAspectFlags aspect)
-    : ctx_(&ctx), format_(format), width_(width), height_(height), mips_(mip_levels), aspect_(aspect) {
+    : format_(format), width_(width), height_(height), mips_(mip_levels), aspect_(aspect), usage_(usage) {
   if (width == 0 || height == 0) throw VulkanError("Image2D: zero-sized image requested");
   VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   ii.imageType = VK_IMAGE_TYPE_2D;
@@ -76,59 +50,30 @@ Image2D::Image2D(const VkContext& ctx, uint32_t width, uint32_t height, VkFormat
   ii.usage = usage;
   ii.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  vk_check(vkCreateImage(ctx.device(), &ii, nullptr, &image_), "vkCreateImage");
-  try {
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(ctx.device(), image_, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = ctx.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    vk_check(vkAllocateMemory(ctx.device(), &ai, nullptr, &memory_), "vkAllocateMemory(image)");
-    vk_check(vkBindImageMemory(ctx.device(), image_, memory_, 0), "vkBindImageMemory");
-    // Transfer-only images get no view (Vulkan forbids it).
-    const VkImageUsageFlags viewable = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
-                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    if ((usage & viewable) == 0) return;
-    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    vi.image = image_;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = format;
-    vi.subresourceRange = {aspect, 0, mip_levels, 0, 1};
-    vk_check(vkCreateImageView(ctx.device(), &vi, nullptr, &view_), "vkCreateImageView");
-  } catch (...) {
-    release();
-    throw;
-  }
-}
-
-Image2D::~Image2D() { release(); }
-
-Image2D& Image2D::operator=(Image2D&& o) noexcept {
-  if (this != &o) {
-    release();
-    ctx_ = std::exchange(o.ctx_, nullptr);
-    image_ = std::exchange(o.image_, VK_NULL_HANDLE);
-    memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
-    view_ = std::exchange(o.view_, VK_NULL_HANDLE);
-    format_ = o.format_;
-    width_ = o.width_;
-    height_ = o.height_;
-    mips_ = o.mips_;
-    aspect_ = o.aspect_;
-  }
-  return *this;
-}
-
-void Image2D::release() {
-  if (!ctx_) return;
-  if (view_) vkDestroyImageView(ctx_->device(), view_, nullptr);
-  if (image_) vkDestroyImage(ctx_->device(), image_, nullptr);
-  if (memory_) vkFreeMemory(ctx_->device(), memory_, nullptr);
-  view_ = VK_NULL_HANDLE;
-  image_ = VK_NULL_HANDLE;
-  memory_ = VK_NULL_HANDLE;
-  ctx_ = nullptr;
+  VkImage img;
+  vk_check(vkCreateImage(ctx.device(), &ii, nullptr, &img), "vkCreateImage");
+  image_ = ImageHandle(ctx.device(), img);
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device(), img, &req);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = ctx.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkDeviceMemory m;
+  vk_check(vkAllocateMemory(ctx.device(), &ai, nullptr, &m), "vkAllocateMemory(image)");
+  memory_ = MemoryHandle(ctx.device(), m);
+  vk_check(vkBindImageMemory(ctx.device(), img, m, 0), "vkBindImageMemory");
+  // Transfer-only images get no view (Vulkan forbids it).
+  const VkImageUsageFlags viewable = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  if ((usage & viewable) == 0) return;
+  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vi.image = img;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = format;
+  vi.subresourceRange = {aspect, 0, mip_levels, 0, 1};
+  VkImageView v;
+  vk_check(vkCreateImageView(ctx.device(), &vi, nullptr, &v), "vkCreateImageView");
+  view_ = ImageViewHandle(ctx.device(), v);
 }
 
 // ---------------------------------------------------------------- helpers

@@ -2,6 +2,7 @@
 // move data between them and the host. Nothing here knows about passes.
 #pragma once
 
+#include "core/vk/handle.h"
 #include "core/vk/vk_context.h"
 
 #include <cstddef>
@@ -11,29 +12,23 @@
 namespace glintlab::core {
 
 // A buffer in host-visible, host-coherent memory (all memory on lavapipe; on
-// a discrete GPU this is the upload/readback path).
+// a discrete GPU this is the upload/readback path). Move-only; its parts are
+// Handles, so nothing leaks when construction fails half-way.
 class Buffer {
  public:
   Buffer() = default;
   Buffer(const VkContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage);
-  ~Buffer();
-  Buffer(Buffer&& o) noexcept { *this = std::move(o); }
-  Buffer& operator=(Buffer&& o) noexcept;
-  Buffer(const Buffer&) = delete;
-  Buffer& operator=(const Buffer&) = delete;
 
-  VkBuffer handle() const { return buffer_; }
+  VkBuffer handle() const { return buffer_.get(); }
   VkDeviceSize size() const { return size_; }
   void* mapped() const { return mapped_; }
   void upload(const void* data, size_t bytes, size_t offset = 0);
 
  private:
-  void release();
-  const VkContext* ctx_ = nullptr;
-  VkBuffer buffer_ = VK_NULL_HANDLE;
-  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  BufferHandle buffer_;
+  MemoryHandle memory_;  // freed after the buffer (members are destroyed in reverse order)
   VkDeviceSize size_ = 0;
-  void* mapped_ = nullptr;
+  void* mapped_ = nullptr;  // unmapped implicitly when the memory is freed
 };
 
 // A 2D optimal-tiling image in device-local memory with one view over all
@@ -43,29 +38,24 @@ class Image2D {
   Image2D() = default;
   Image2D(const VkContext& ctx, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
           uint32_t mip_levels = 1, VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
-  ~Image2D();
-  Image2D(Image2D&& o) noexcept { *this = std::move(o); }
-  Image2D& operator=(Image2D&& o) noexcept;
-  Image2D(const Image2D&) = delete;
-  Image2D& operator=(const Image2D&) = delete;
 
-  VkImage handle() const { return image_; }
-  VkImageView view() const { return view_; }
+  VkImage handle() const { return image_.get(); }
+  VkImageView view() const { return view_.get(); }
   VkFormat format() const { return format_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   uint32_t mip_levels() const { return mips_; }
   VkImageAspectFlags aspect() const { return aspect_; }
+  VkImageUsageFlags usage() const { return usage_; }
 
  private:
-  void release();
-  const VkContext* ctx_ = nullptr;
-  VkImage image_ = VK_NULL_HANDLE;
-  VkDeviceMemory memory_ = VK_NULL_HANDLE;
-  VkImageView view_ = VK_NULL_HANDLE;
+  MemoryHandle memory_;  // declared first: destroyed after the image and its view
+  ImageHandle image_;
+  ImageViewHandle view_;
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   uint32_t width_ = 0, height_ = 0, mips_ = 1;
   VkImageAspectFlags aspect_ = VK_IMAGE_ASPECT_COLOR_BIT;
+  VkImageUsageFlags usage_ = 0;
 };
 
 // Records a layout transition of all mips with a conservative full barrier.

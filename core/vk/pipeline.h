@@ -2,6 +2,7 @@
 // plus builders for the two pipeline shapes the renderer uses.
 #pragma once
 
+#include "core/vk/handle.h"
 #include "core/vk/shader_compiler.h"
 #include "core/vk/vk_context.h"
 
@@ -9,46 +10,6 @@
 #include <vector>
 
 namespace glintlab::core {
-
-// Owns one Vulkan handle destroyed with `vkDestroy*(device, h, nullptr)`.
-template <typename H, void (*Destroy)(VkDevice, H, const VkAllocationCallbacks*)>
-class Handle {
- public:
-  Handle() = default;
-  Handle(VkDevice d, H h) : device_(d), h_(h) {}
-  ~Handle() { reset(); }
-  Handle(Handle&& o) noexcept : device_(o.device_), h_(o.h_) { o.h_ = VK_NULL_HANDLE; }
-  Handle& operator=(Handle&& o) noexcept {
-    if (this != &o) {
-      reset();
-      device_ = o.device_;
-      h_ = o.h_;
-      o.h_ = VK_NULL_HANDLE;
-    }
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  H get() const { return h_; }
-  void reset() {
-    if (h_ != VK_NULL_HANDLE) Destroy(device_, h_, nullptr);
-    h_ = VK_NULL_HANDLE;
-  }
-
- private:
-  VkDevice device_ = VK_NULL_HANDLE;
-  H h_ = VK_NULL_HANDLE;
-};
-
-using ShaderModule = Handle<VkShaderModule, vkDestroyShaderModule>;
-using DescriptorSetLayout = Handle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
-using PipelineLayout = Handle<VkPipelineLayout, vkDestroyPipelineLayout>;
-using Pipeline = Handle<VkPipeline, vkDestroyPipeline>;
-using DescriptorPool = Handle<VkDescriptorPool, vkDestroyDescriptorPool>;
-using RenderPass = Handle<VkRenderPass, vkDestroyRenderPass>;
-using Framebuffer = Handle<VkFramebuffer, vkDestroyFramebuffer>;
-using Sampler = Handle<VkSampler, vkDestroySampler>;
-using QueryPool = Handle<VkQueryPool, vkDestroyQueryPool>;
 
 ShaderModule make_shader_module(const VkContext& ctx, const std::vector<uint32_t>& spirv);
 DescriptorSetLayout make_set_layout(const VkContext& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings);

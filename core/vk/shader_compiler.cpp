@@ -1,5 +1,7 @@
 #include "core/vk/shader_compiler.h"
 
+#include "core/util/atomic_file.h"
+
 #include "core/util/content_hash.h"
 
 #include <glslang/Public/ResourceLimits.h>
@@ -14,7 +16,6 @@
 #include <mutex>
 #include <regex>
 #include <sstream>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -209,18 +210,13 @@ CompiledShader ShaderCompiler::compile(const std::string& path, ShaderStage stag
   glslang::GlslangToSpv(*program.getIntermediate(to_glslang(stage)), out.spirv, &logger, &opt);
   if (out.spirv.empty()) throw ShaderCompileError(src.path + ": SPIR-V generation failed: " + logger.getAllMessages());
 
-  if (!cached.empty()) {  // atomic: write a temporary file, then rename over
-    std::error_code ec;
-    fs::create_directories(cached.parent_path(), ec);
-    fs::path tmp = cached;
-    tmp += ".tmp" + std::to_string(::getpid());
-    {
-      std::ofstream f(tmp, std::ios::binary);
-      f.write(reinterpret_cast<const char*>(out.spirv.data()), std::streamsize(out.spirv.size() * 4));
-      if (!f) ec = std::make_error_code(std::errc::io_error);
+  if (!cached.empty()) {
+    try {  // a cache that cannot be written only costs time
+      std::error_code ec;
+      fs::create_directories(cached.parent_path(), ec);
+      write_text_atomic(cached, std::string_view(reinterpret_cast<const char*>(out.spirv.data()), out.spirv.size() * 4));
+    } catch (const std::exception&) {
     }
-    if (!ec) fs::rename(tmp, cached, ec);
-    if (ec) fs::remove(tmp, ec);  // a cache that cannot be written only costs time
   }
   return out;
 }

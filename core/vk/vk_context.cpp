@@ -1,5 +1,8 @@
 #include "core/vk/vk_context.h"
 
+#include <memory>
+#include <type_traits>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -122,11 +125,12 @@ bool VkContext::validation_requested_by_env() {
 }
 
 std::vector<DeviceInfo> VkContext::list_devices() {
-  VkInstance instance = create_instance(false, nullptr);
+  // The instance is destroyed on every path, enumeration failures included.
+  std::unique_ptr<std::remove_pointer_t<VkInstance>, void (*)(VkInstance)> instance(
+      create_instance(false, nullptr), [](VkInstance i) { vkDestroyInstance(i, nullptr); });
   std::vector<DeviceInfo> out;
-  auto devs = physical_devices(instance);
+  auto devs = physical_devices(instance.get());
   for (uint32_t i = 0; i < devs.size(); ++i) out.push_back(describe(devs[i], i));
-  vkDestroyInstance(instance, nullptr);
   return out;
 }
 

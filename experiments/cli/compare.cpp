@@ -129,3 +129,32 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
 }
 
 }  // namespace glintlab
+
+// ---------------------------------------------------------------- the command line
+#include "experiments/cli/commands.h"
+#include "experiments/cli/exit_codes.h"
+
+#include <iostream>
+
+namespace glintlab {
+
+void add_compare_command(CLI::App& app, int& exit_code) {
+  auto cmp = std::make_shared<CompareOptions>();
+  CLI::App* c = app.add_subcommand("compare", "compare a test image with a reference image");
+  c->add_option("test", cmp->test, "test image (any format OpenImageIO reads)")->required();
+  c->add_option("ref", cmp->ref, "reference image")->required();
+  c->add_option("--space", cmp->space, "OCIO colour space of both inputs (default: file tag, else scene_linear)");
+  c->add_option("--metric", cmp->metrics, "metric(s) to report (default: all)");
+  c->add_option("--map", cmp->map_path, "write the first metric's per-pixel map as a 1-channel EXR");
+  c->add_flag("--json", cmp->json, "print {\"metrics\": {name: {\"mean\", \"max\"}}}");
+  c->add_option("--ocio-config", cmp->ocio_config, "OCIO config (default: $OCIO, else the shipped config)");
+  c->add_option("--itp-nits", cmp->itp_nits, "cd/m^2 of Y = 1 for deltaEITP (default 100)");
+  c->add_option("--view", cmp->display_view,
+                "measure display-referred, as this OCIO DISPLAY/VIEW shows the images (e.g. sRGB/Standard)");
+  c->add_flag("--flip-ldr", cmp->flip_ldr, "LDR-FLIP instead of HDR-FLIP");
+  c->callback([cmp, &exit_code] {
+    exit_code = run_guarded([&] { return run_compare(*cmp, std::cout, std::cerr); }, std::cerr);
+  });
+}
+
+}  // namespace glintlab

@@ -1,12 +1,13 @@
 #include "experiments/runner/reference_cache.h"
 
+#include "core/util/atomic_file.h"
 #include "core/util/content_hash.h"
+#include "core/util/io_error.h"
 
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -68,19 +69,13 @@ void ReferenceCache::store(const std::string& key, const Image& img) const {
   std::memcpy(h.key, key.data(), 32);
   std::string sum = checksum(img);
   std::memcpy(h.checksum, sum.data(), 32);
-  std::string path = path_of(key);
-  std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  {
+  write_file_atomic(path_of(key), [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
     out.write(reinterpret_cast<const char*>(img.data.data()), std::streamsize(img.data.size() * 4));
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw std::runtime_error(tmp + ": cannot write reference cache entry");
-    }
-  }
-  fs::rename(tmp, path);
+    out.flush();
+    if (!out) throw IoError(tmp.string() + ": cannot write reference cache entry");
+  });
 }
 
 }  // namespace glintlab

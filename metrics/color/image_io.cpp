@@ -1,5 +1,8 @@
 #include "metrics/color/image_io.h"
 
+#include "core/util/atomic_file.h"
+#include "core/util/io_error.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -8,7 +11,6 @@
 #include <system_error>
 #include <vector>
 
-#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -46,30 +48,22 @@ std::vector<std::string> channel_names(int channels) {
   }
 }
 
-// Writes through `format` into path.tmp-<pid> and renames over path; on any failure the temporary
-// file is removed and the existing file at path is untouched.
+// Writes through `format` atomically (core/util/atomic_file.h): on any failure the existing file at
+// path is untouched.
 void write_atomic(const std::string& path, const char* format, OIIO::ImageSpec spec, OIIO::TypeDesc data_type,
                   const void* data) {
-  const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
-  auto fail = [&](const std::string& why) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write '" + path + "': " + why);
-  };
-  {
+  write_file_atomic(path, [&](const fs::path& tmp) {
+    auto fail = [&](const std::string& why) { throw IoError("cannot write '" + path + "': " + why); };
     auto out = OIIO::ImageOutput::create(format);
     if (!out) fail(std::string("no OpenImageIO writer for ") + format + ": " + oiio_error(nullptr));
-    if (!out->open(tmp, spec)) fail(oiio_error(out.get()));
+    if (!out->open(tmp.string(), spec)) fail(oiio_error(out.get()));
     if (!out->write_image(data_type, data)) {
       std::string e = oiio_error(out.get());
       out->close();
       fail(e);
     }
     if (!out->close()) fail(oiio_error(out.get()));
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) fail("rename from '" + tmp + "' failed: " + ec.message());
+  });
 }
 
 void write_exr_impl(const std::string& path, const Image& img, const std::array<float, 8>* chromaticities,

@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   no_t.T = 0;
   cases.push_back({"T = 0 (no transmission)", no_t, {0.0, 1e30, "final"}});
   core::SandParams no_g = base;
-  no_g.glint_model = "none";
+  no_g.glint_model = core::GlintModel::None;
   cases.push_back({"no glints", no_g, {0.0, 1e30, "final"}});
   // With the thesis sigmoid (a = 2, b = 1.3) sig(0) = 0.07: the far field is
   // always blended in. A transition pushed out to b = 100 never reaches it
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   cases.push_back({"close only (b = 100, dist <= 20)", near_only, {0.0, 20.0, "final"}});
   cases.push_back({"far only (close never reached)", base, {1e6, 1e30, "final"}});
   core::SandParams minimal = no_t;
-  minimal.glint_model = "none";
+  minimal.glint_model = core::GlintModel::None;
   cases.push_back({"far only, T = 0, no glints", minimal, {1e6, 1e30, "final"}});
 
   for (auto [w, h] : sizes) {

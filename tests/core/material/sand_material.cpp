@@ -122,7 +122,7 @@ TEST(SandParams, ShaderDefinesPruneWhatARunDoesNotNeed) {
               has(all, "SAND_FAR=1") && has(all, "SAND_DEBUG=0"));
   p.T = 0;
   EXPECT_TRUE(has(core::shader_defines(p, {}), "SAND_TRANSMISSION=0"));
-  p.glint_model = "none";
+  p.glint_model = core::GlintModel::None;
   EXPECT_TRUE(has(core::shader_defines(p, {}), "SAND_GLINTS=0"));
   // sig(x) = 1/(1+exp(-2(x-1.3))) < 1e-4 for x < 1.3 - ln(9999)/2 = -3.305: never for x >= 0,
   // so make b larger: b = 10 -> far unreachable below 10 - 4.605 = 5.395.
@@ -397,7 +397,7 @@ std::vector<Case> make_cases(size_t n_random, uint64_t seed) {
     sp.sigmoid_b = 20 * U(rng);
     sp.appendix_compat = U(rng) < 0.5 ? 0u : uint32_t(rng() % 64);
     sp.fresnel_half_vector = U(rng) < 0.5 ? "macro_normal" : "light_view";
-    sp.glint_model = U(rng) < 0.9 ? "kajs" : "none";
+    sp.glint_model = U(rng) < 0.9 ? core::GlintModel::Kajs : core::GlintModel::None;
     Case c;
     c.p = sp.pack();
     vec3 n = coin() ? vec3(0, 0, -1) : (coin() ? vec3(0, 0, 1) : unit());

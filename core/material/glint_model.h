@@ -1,0 +1,23 @@
+// The glint term of the sand (DESIGN "Ground truth"): which model shades the
+// sparkles. One table of names; the numeric value is what the GPU sees
+// (SandParamsGPU::glint_model = SAND_GLINT_* in shaders/sand/sand_params.glsl;
+// a test checks that every row has its GLSL constant with the same value).
+#pragma once
+
+#include "core/util/named_enum.h"
+
+#include <cstdint>
+
+namespace glintlab::core {
+
+enum class GlintModel : uint32_t {
+  None = 0,  // no glint term
+  Kajs = 1,  // Kajs 2022 eq. 4.17-4.23: per-grain cube micro normals, Gaussian gate
+};
+
+inline constexpr EnumTable<GlintModel, 2> kGlintModelNames{{
+    {GlintModel::Kajs, "kajs"},
+    {GlintModel::None, "none"},
+}};
+
+}  // namespace glintlab::core

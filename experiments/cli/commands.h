@@ -1,0 +1,14 @@
+// The glintlab commands. Each adds its subcommand (options, help) to the app
+// and, when it was chosen, runs from CLI11's callback and stores its exit code
+// (experiments/cli/exit_codes.h) in `exit_code`. main() only wires them up.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace glintlab {
+
+void add_run_commands(CLI::App& app, int& exit_code);      // render, run
+void add_compare_command(CLI::App& app, int& exit_code);   // compare (experiments/cli/compare.cpp)
+void add_list_command(CLI::App& app, int& exit_code);      // list
+
+}  // namespace glintlab

@@ -1,0 +1,41 @@
+// `glintlab list`: what is built in (experiments, paths, scenes, presets,
+// debug outputs, glint models, metrics) and the Vulkan devices.
+#include "core/material/glint_model.h"
+#include "core/material/sand_material.h"
+#include "core/scene/camera_path.h"
+#include "core/vk/vk_context.h"
+#include "experiments/cli/commands.h"
+#include "experiments/cli/exit_codes.h"
+#include "experiments/spec/experiment_spec.h"
+#include "metrics/metric_registry.h"
+
+#include <iostream>
+
+namespace glintlab {
+
+void add_list_command(CLI::App& app, int& exit_code) {
+  CLI::App* list = app.add_subcommand("list", "list built-in experiments, camera paths, presets, metrics, devices");
+  list->callback([&exit_code] {
+    exit_code = run_guarded(
+        [] {
+          auto print = [](const char* title, const std::vector<std::string>& xs) {
+            std::cout << title << ":\n";
+            for (const auto& x : xs) std::cout << "  " << x << "\n";
+          };
+          print("experiments", builtin_experiment_names());
+          print("camera paths", core::CameraPath::builtin_names());
+          print("scenes (mesh types)", {"plane", "wavy", "sphere", "dunes"});
+          print("material presets", core::SandParams::preset_names());
+          print("glint models", enum_names(core::kGlintModelNames));
+          print("debug outputs", core::SandParams::debug_output_names());
+          print("metrics", metrics::metric_names());
+          std::cout << "devices:\n";
+          for (const auto& d : core::VkContext::list_devices())
+            std::cout << "  " << d.index << ": " << d.name << " (" << d.type << ", Vulkan " << d.api_version << ")\n";
+          return kExitOk;
+        },
+        std::cerr);
+  });
+}
+
+}  // namespace glintlab
