@@ -16,87 +16,131 @@ double perceptual_luminance(double Y, double reference_nits) {
   return pq_inverse_eotf(std::max(Y, 0.0) * reference_nits);
 }
 
-double flicker_ratio(double mean_abs_dT, double mean_abs_dR) {
-  if (std::isnan(mean_abs_dT) || std::isnan(mean_abs_dR)) return std::numeric_limits<double>::quiet_NaN();
-  if (mean_abs_dR == 0.0) return mean_abs_dT == 0.0 ? 1.0 : std::numeric_limits<double>::infinity();
-  return mean_abs_dT / mean_abs_dR;
+double flicker_ratio(double mean_test, double mean_ref) {
+  if (std::isnan(mean_test) || std::isnan(mean_ref)) return std::numeric_limits<double>::quiet_NaN();
+  if (mean_ref == 0.0) return mean_test == 0.0 ? 1.0 : std::numeric_limits<double>::infinity();
+  return mean_test / mean_ref;
 }
 
-FlickerTracker::FlickerTracker(double reference_nits) : nits_(reference_nits) {
-  if (!(reference_nits > 0.0) || !std::isfinite(reference_nits))
-    throw std::invalid_argument("FlickerTracker: reference_nits (cd/m^2 for Y = 1) must be finite and > 0, got " +
-                                std::to_string(reference_nits));
+std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
+  const int w = xyz.width, h = xyz.height;
+  const int r = std::max(1, int(std::ceil(3.0 * sigma_px)));
+  std::vector<double> k(size_t(2 * r + 1));
+  double sum = 0.0;
+  for (int i = -r; i <= r; ++i) sum += k[size_t(i + r)] = std::exp(-0.5 * double(i * i) / (sigma_px * sigma_px));
+  for (double& x : k) x /= sum;
+  std::vector<float> tmp(size_t(w) * h), out(size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double s = 0.0;
+      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * xyz.at(std::clamp(x + i, 0, w - 1), y, 1);
+      tmp[size_t(y) * w + x] = float(s);
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double s = 0.0;
+      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * tmp[size_t(std::clamp(y + i, 0, h - 1)) * w + x];
+      out[size_t(y) * w + x] = float(s);
+    }
+  return out;
 }
 
-std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Image& ref_xyz) {
+std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Image& ref_xyz, const Image& motion) {
   require_same_size(test_xyz, ref_xyz, "FlickerTracker::push");
+  require_same_size(test_xyz, motion, "FlickerTracker::push (motion)");
+  if (motion.channels < 4)
+    throw std::invalid_argument("FlickerTracker::push: the motion image needs 4 channels (v.xy, distance now, "
+                                "distance in the previous frame), got " + std::to_string(motion.channels));
   if (pushed_ > 0 && (test_xyz.width != width_ || test_xyz.height != height_))
     throw std::invalid_argument("FlickerTracker::push: frame " + std::to_string(pushed_) + " is " +
                                 std::to_string(test_xyz.width) + "x" + std::to_string(test_xyz.height) +
                                 " but the sequence is " + std::to_string(width_) + "x" + std::to_string(height_));
+  const int w = test_xyz.width, h = test_xyz.height;
   const std::size_t n = test_xyz.pixel_count();
-  std::vector<float> cur_t(n), cur_r(n);
+  std::vector<float> yt(n), yr(n), dist(n);
   for (std::size_t i = 0; i < n; ++i) {
-    cur_t[i] = float(perceptual_luminance(test_xyz.data[i * test_xyz.channels + 1], nits_));
-    cur_r[i] = float(perceptual_luminance(ref_xyz.data[i * ref_xyz.channels + 1], nits_));
+    yt[i] = test_xyz.data[i * test_xyz.channels + 1];
+    yr[i] = ref_xyz.data[i * ref_xyz.channels + 1];
+    dist[i] = motion.data[i * motion.channels + 2];
   }
   std::optional<FlickerFrame> result;
   if (pushed_ > 0) {
-    double s_err = 0.0, s_t = 0.0, s_r = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double dT = double(cur_t[i]) - prev_t_[i];
-      const double dR = double(cur_r[i]) - prev_r_[i];
-      s_err += std::abs(dT - dR);
-      s_t += std::abs(dT);
-      s_r += std::abs(dR);
-    }
     FlickerFrame f;
-    const double inv = n ? 1.0 / double(n) : 0.0;
-    f.temporal_error = s_err * inv;
-    f.mean_abs_dT = s_t * inv;
-    f.mean_abs_dR = s_r * inv;
-    f.flicker_ratio = flicker_ratio(f.mean_abs_dT, f.mean_abs_dR);
+    const std::vector<float> ya = adaptation_luminance(ref_xyz);
+    double s_ct = 0, s_cr = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0;
+    auto pq = [](double Y) { return perceptual_luminance(Y); };
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = std::size_t(y) * w + x;
+        // Fixed-pixel terms over every pixel.
+        const double dT = pq(yt[i]) - pq(prev_yt_[i]), dR = pq(yr[i]) - pq(prev_yr_[i]);
+        s_e += std::abs(dT - dR);
+        s_dt += std::abs(dT);
+        s_dr += std::abs(dR);
+        // Along the motion.
+        const float* m = motion.px(x, y);
+        if (!(m[2] > 0.0f)) {
+          ++f.background_px;
+          continue;
+        }
+        // The centre of pixel p sat at (x + 0.5, y + 0.5) - v in frame t-1; in texel-index
+        // coordinates (texel centres at integers) that is (x, y) - v.
+        const double qx = x - double(m[0]), qy = y - double(m[1]);
+        const double d_prev = m[3];
+        bool ok = d_prev > 0.0 && std::isfinite(qx) && std::isfinite(qy) && qx >= 0.0 && qy >= 0.0 &&
+                  qx <= double(w - 1) && qy <= double(h - 1);
+        double t_prev = 0, r_prev = 0;
+        if (ok) {
+          const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
+          const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+          const double fx = qx - x0, fy = qy - y0;
+          const int tx[4] = {x0, x1, x0, x1}, ty[4] = {y0, y0, y1, y1};
+          const double tw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+          for (int k = 0; k < 4 && ok; ++k) {
+            if (tw[k] <= 0.0) continue;
+            const std::size_t j = std::size_t(ty[k]) * w + tx[k];
+            const double dj = prev_dist_[j];
+            ok = dj > 0.0 && std::abs(dj - d_prev) <= kDisocclusionTolerance * d_prev;
+            t_prev += tw[k] * prev_yt_[j];
+            r_prev += tw[k] * prev_yr_[j];
+          }
+        }
+        if (!ok) {
+          ++f.disoccluded_px;
+          continue;
+        }
+        ++f.valid_px;
+        const double denom = double(ya[i]) + kContrastEpsilon;
+        s_ct += std::abs(double(yt[i]) - t_prev) / denom;
+        s_cr += std::abs(double(yr[i]) - r_prev) / denom;
+        s_emc += std::abs((pq(yt[i]) - pq(yr[i])) - (pq(t_prev) - pq(r_prev)));
+      }
+    const double inv_n = n ? 1.0 / double(n) : 0.0;
+    const double inv_v = f.valid_px ? 1.0 / double(f.valid_px) : std::numeric_limits<double>::quiet_NaN();
+    f.temporal_error = s_e * inv_n;
+    f.frame_diff_ratio = flicker_ratio(s_dt * inv_n, s_dr * inv_n);
+    f.mean_contrast_test = s_ct * inv_v;
+    f.mean_contrast_ref = s_cr * inv_v;
+    f.temporal_error_mc = s_emc * inv_v;
+    f.flicker_ratio = flicker_ratio(f.mean_contrast_test, f.mean_contrast_ref);
     frames_.push_back(f);
     result = f;
   }
-  width_ = test_xyz.width;
-  height_ = test_xyz.height;
-  prev_t_ = std::move(cur_t);
-  prev_r_ = std::move(cur_r);
+  width_ = w;
+  height_ = h;
+  prev_yt_ = std::move(yt);
+  prev_yr_ = std::move(yr);
+  prev_dist_ = std::move(dist);
   ++pushed_;
   return result;
-}
-
-double FlickerTracker::mean_temporal_error() const {
-  if (frames_.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double s = 0.0;
-  for (const FlickerFrame& f : frames_) s += f.temporal_error;
-  return s / double(frames_.size());
-}
-
-double FlickerTracker::mean_flicker_ratio() const {
-  if (frames_.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double s = 0.0;
-  for (const FlickerFrame& f : frames_) s += f.flicker_ratio;
-  return s / double(frames_.size());
-}
-
-double FlickerTracker::ratio_of_sums() const {
-  if (frames_.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double st = 0.0, sr = 0.0;
-  for (const FlickerFrame& f : frames_) {
-    st += f.mean_abs_dT;
-    sr += f.mean_abs_dR;
-  }
-  return flicker_ratio(st, sr);
 }
 
 void FlickerTracker::reset() {
   pushed_ = 0;
   width_ = height_ = 0;
-  prev_t_.clear();
-  prev_r_.clear();
-  frames_.clear();
+  prev_yt_.clear();
+  prev_yr_.clear();
+  prev_dist_.clear();
 }
 
 }  // namespace glintlab::metrics

@@ -1,12 +1,44 @@
-// Temporal stability (DESIGN.md "Flicker"). Frames are encoded perceptually as
-//   X = PQ(max(Y, 0) * L_ref),  L_ref = 100 cd/m^2 for Y = 1 (the ΔE_ITP convention),
-// i.e. the SMPTE ST 2084 code value of the pixel's absolute luminance, so that equal steps are roughly
-// equally visible from dark to HDR highlights (a log or gamma encoding would over- or under-weight glints).
-// With ΔX_t = X_t - X_{t-1} per pixel:
-//   temporal_error_t = mean |ΔT_t - ΔR_t|
-//   flicker_ratio_t  = mean |ΔT_t| / mean |ΔR_t|   (1: as stable as the truth; > 1 flickers; < 1 over-smooths)
-// Ratio when the reference does not change: both means 0 -> 1; only mean|ΔR_t| == 0 -> +inf (never NaN
-// unless the inputs are NaN).
+// Temporal stability (flicker) of a test sequence against its reference, along
+// the motion.
+//
+// Flicker is change along the motion that the truth does not have, seen as
+// contrast. With the renderer's exact motion vectors v_t (not estimated
+// optical flow) and a disocclusion mask, in linear luminance Y:
+//   ΔX_t(p) = X_t(p) - X_{t-1}(p - v_t(p))      (previous frame resampled bilinearly at the
+//                                                reprojected position: the warping error of
+//                                                Lai et al. 2018, "Learning Blind Video Temporal
+//                                                Consistency", with exact vectors)
+//   c_t(p)  = |ΔX_t(p)| / (Y_a(p) + ε)          (Weber contrast against the local adaptation
+//                                                luminance: Y_a = the *reference* frame's
+//                                                luminance low-passed by a Gaussian of
+//                                                σ = 2 px, about the eye's resolution at the
+//                                                default viewing distance; ε = 0.01, 1 % of
+//                                                diffuse white, keeps black regions finite)
+//   flicker_ratio_t = mean c_t(T) / mean c_t(R) over unmasked pixels
+//                     (1: as stable as the truth; > 1 flickers; < 1 over-smooths)
+// Contrast against a low-passed adaptation level is how perceptual metrics
+// treat a small bright feature: the eye integrates it over its receptive field
+// before its response compresses (a per-pixel compressive code such as PQ
+// before differencing flattens exactly the sub-pixel pops that flicker, and
+// mis-ranks one sample per pixel against 2x2 supersampling on glinting sand).
+//
+// Masked (left out of every along-the-motion mean, and counted):
+//   background: no surface at p in frame t (the sky);
+//   disoccluded: p - v_t lies outside the image, the point was behind the
+//     previous camera, or a bilinear tap of the previous frame at p - v_t saw
+//     another surface (its distance differs from the point's distance in frame
+//     t-1 by more than 5 %).
+// Also reported:
+//   temporal_error    = mean |e_t - e_{t-1}| per pixel (all pixels, no motion), e = PQ(Y_T) - PQ(Y_R)
+//                       in PQ code values (Y = 1 at 100 cd/m^2): the error's change at a fixed pixel
+//   temporal_error_mc = the same along the motion (unmasked pixels): mean |e_t(p) - e_{t-1}(p - v)|
+//   frame_diff_ratio  = mean |ΔT| / mean |ΔR| at a fixed pixel in PQ (the former flicker ratio; it
+//                       measures content moving across pixels, kept for comparison only)
+//
+// Motion input: RGBA per pixel as the renderer's surface pass writes it
+// (shaders/common/motion.glsl): xy = v_t in pixels (p_t - p_{t-1}), z = the
+// surface's distance to the eye in frame t (0 = no surface), w = its distance
+// in frame t-1 (< 0: behind the previous camera).
 #pragma once
 
 #include <cstddef>
@@ -17,44 +49,51 @@
 
 namespace glintlab::metrics {
 
-constexpr double kFlickerReferenceNits = 100.0;  // cd/m^2 for Y = 1
+constexpr double kFlickerReferenceNits = 100.0;  // cd/m^2 for Y = 1 (PQ encodings)
+constexpr double kAdaptationSigmaPx = 2.0;
+constexpr double kContrastEpsilon = 0.01;
+constexpr double kDisocclusionTolerance = 0.05;
 
-// PQ(max(Y, 0) * reference_nits): the per-pixel perceptual luminance used for flicker.
+// PQ(max(Y, 0) * reference_nits): the perceptual luminance of temporal_error.
 double perceptual_luminance(double Y, double reference_nits = kFlickerReferenceNits);
 
-// mean|ΔT| / mean|ΔR| with the sentinels above.
-double flicker_ratio(double mean_abs_dT, double mean_abs_dR);
+// a / b with the sentinels of a ratio of non-negative means: 0/0 -> 1 (both
+// still: as stable as the truth), x/0 -> +inf, NaN in -> NaN.
+double flicker_ratio(double mean_test, double mean_ref);
 
 struct FlickerFrame {
-  double temporal_error = 0.0;  // mean |ΔT_t - ΔR_t| (PQ code values)
-  double flicker_ratio = 1.0;   // mean |ΔT_t| / mean |ΔR_t|
-  double mean_abs_dT = 0.0;     // mean |ΔT_t|
-  double mean_abs_dR = 0.0;     // mean |ΔR_t|
+  double flicker_ratio = 1.0;        // mean c(T) / mean c(R)
+  double mean_contrast_test = 0.0;   // mean c_t(T) over unmasked pixels
+  double mean_contrast_ref = 0.0;    // mean c_t(R)
+  double temporal_error = 0.0;       // mean |e_t - e_{t-1}|, all pixels, PQ
+  double temporal_error_mc = 0.0;    // along the motion, unmasked pixels, PQ
+  double frame_diff_ratio = 1.0;     // mean|ΔT| / mean|ΔR| at fixed pixels, PQ
+  std::size_t valid_px = 0;          // pixels in the along-the-motion means
+  std::size_t disoccluded_px = 0;    // masked: hidden or off-screen in frame t-1
+  std::size_t background_px = 0;     // masked: no surface
 };
 
-// Feed (test, reference) XYZ frame pairs in order; every frame after the first yields a FlickerFrame.
+// The Gaussian low-pass of the luminance (channel 1 of XYZ) with σ in pixels,
+// truncated at 3σ, edges clamped: the adaptation luminance Y_a.
+std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px = kAdaptationSigmaPx);
+
+// Feed (test, reference, motion) frames in order; every frame after the first
+// yields a FlickerFrame. Test and reference are CIE XYZ (Y = 1 diffuse white).
 class FlickerTracker {
  public:
-  explicit FlickerTracker(double reference_nits = kFlickerReferenceNits);
+  // Throws std::invalid_argument when sizes differ, the motion image has fewer
+  // than 4 channels, or the size changes between frames.
+  std::optional<FlickerFrame> push(const Image& test_xyz, const Image& ref_xyz, const Image& motion);
 
-  // Throws std::invalid_argument when test and reference differ in size, or the size changes.
-  std::optional<FlickerFrame> push(const Image& test_xyz, const Image& ref_xyz);
-
-  const std::vector<FlickerFrame>& frames() const { return frames_; }  // one per frame after the first
+  const std::vector<FlickerFrame>& frames() const { return frames_; }
   std::size_t frames_pushed() const { return pushed_; }
-
-  // Sequence aggregates; NaN when no frame has been measured yet (fewer than two frames pushed).
-  double mean_temporal_error() const;  // mean over frames of temporal_error_t
-  double mean_flicker_ratio() const;   // mean over frames of flicker_ratio_t (+inf if any frame is +inf)
-  double ratio_of_sums() const;        // sum_t mean|ΔT_t| / sum_t mean|ΔR_t| (same sentinels)
-
+  // Starts a new sequence (a camera cut: the next frame has no predecessor).
   void reset();
 
  private:
-  double nits_;
   std::size_t pushed_ = 0;
   int width_ = 0, height_ = 0;
-  std::vector<float> prev_t_, prev_r_;
+  std::vector<float> prev_yt_, prev_yr_, prev_dist_;
   std::vector<FlickerFrame> frames_;
 };
 

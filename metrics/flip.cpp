@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -36,8 +37,32 @@ constexpr Csf kCsfRG{1.0, 0.0053, 0.0, 1e-5};
 constexpr Csf kCsfBY{34.1, 0.04, 13.5, 0.025};
 constexpr double kCsfMaxB = 0.04;  // largest b over all channels: sets the common kernel radius
 
-// ACES fit with the 0.6 pre-exposure folded in (HDR-FLIP): (k0 x^2 + k1 x + k2) / (k3 x^2 + k4 x + k5).
+// HDR-FLIP tone mappers as rationals (k0 x^2 + k1 x + k2) / (k3 x^2 + k4 x + k5) (FLIP v1.6's
+// coefficients): ACES with the 0.6 pre-exposure folded in, Hable, and Reinhard's x / (1 + x) (which
+// FLIP uses only to place the exposure range; Reinhard itself maps on luminance).
 constexpr double kAces[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0.0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
+constexpr double kHable[6] = {0.231683, 0.013791, 0.0, 0.18, 0.3, 0.018};
+constexpr double kReinhard[6] = {0.0, 1.0, 0.0, 0.0, 1.0, 1.0};
+
+const double* tone_coefficients(FlipToneMapper tm) {
+  switch (tm) {
+    case FlipToneMapper::Aces: return kAces;
+    case FlipToneMapper::Hable: return kHable;
+    case FlipToneMapper::Reinhard: return kReinhard;
+  }
+  return kAces;
+}
+
+// BT.709 luma coefficients on linear RGB: FLIP's luminance for the exposure range and for Reinhard.
+constexpr double kLum[3] = {0.2126, 0.7152, 0.0722};
+
+// Rational tone curve of one channel: negative -> 0, +inf stays finite (-> k0/k3), clamped to [0, 1].
+double rational_tonemap(const double* k, double x) {
+  if (std::isnan(x)) return x;
+  x = std::clamp(x, 0.0, 1e30);
+  const double y = (k[0] * x * x + k[1] * x + k[2]) / (k[3] * x * x + k[4] * x + k[5]);
+  return std::clamp(y, 0.0, 1.0);
+}
 
 using Plane = std::vector<float>;
 
@@ -223,8 +248,9 @@ struct Work {
 };
 
 // src: linear sRGB (first three channels). LDR (exposure_scale <= 0): clamped to [0, 1]; HDR: scaled by
-// exposure_scale = 2^c and tone mapped (HDR-FLIP), which also lands in [0, 1].
-void prepare(const Image& src, double exposure_scale, const FlipKernels& K, Work& W, Prepared& P) {
+// exposure_scale = 2^c and tone mapped with `tm` (HDR-FLIP), which also lands in [0, 1].
+void prepare(const Image& src, double exposure_scale, FlipToneMapper tm, const FlipKernels& K, Work& W,
+             Prepared& P) {
   const int w = src.width, h = src.height;
   const Rec709& c = rec709();
   const Mat3& M = c.rgb2xyz;
@@ -238,9 +264,11 @@ void prepare(const Image& src, double exposure_scale, const FlipKernels& K, Work
     const float* p = src.data.data() + i * src.channels;
     double r, g, b;
     if (exposure_scale > 0.0) {
-      r = flip_aces_tonemap(exposure_scale * p[0]);
-      g = flip_aces_tonemap(exposure_scale * p[1]);
-      b = flip_aces_tonemap(exposure_scale * p[2]);
+      double c[3] = {exposure_scale * p[0], exposure_scale * p[1], exposure_scale * p[2]};
+      flip_tonemap(tm, c);
+      r = c[0];
+      g = c[1];
+      b = c[2];
     } else {
       r = std::isnan(p[0]) ? p[0] : std::clamp(double(p[0]), 0.0, 1.0);
       g = std::isnan(p[1]) ? p[1] : std::clamp(double(p[1]), 0.0, 1.0);
@@ -328,15 +356,18 @@ void check_ppd(double ppd, const char* who) {
 
 }  // namespace
 
-double flip_pixels_per_degree(double distance_m, double monitor_width_m, double monitor_width_px) {
-  return distance_m * (monitor_width_px / monitor_width_m) * kPi / 180.0;
-}
+double flip_aces_tonemap(double x) { return rational_tonemap(kAces, x); }
 
-double flip_aces_tonemap(double x) {
-  if (std::isnan(x)) return x;
-  x = std::clamp(x, 0.0, 1e30);  // negative -> 0; +inf stays finite (limit k0/k3 > 1 -> clamps to 1)
-  const double y = (kAces[0] * x * x + kAces[1] * x + kAces[2]) / (kAces[3] * x * x + kAces[4] * x + kAces[5]);
-  return std::clamp(y, 0.0, 1.0);
+void flip_tonemap(FlipToneMapper tm, double rgb[3]) {
+  if (tm != FlipToneMapper::Reinhard) {
+    const double* k = tone_coefficients(tm);
+    for (int c = 0; c < 3; ++c) rgb[c] = rational_tonemap(k, rgb[c]);
+    return;
+  }
+  double v[3];
+  for (int c = 0; c < 3; ++c) v[c] = std::isnan(rgb[c]) ? rgb[c] : std::clamp(rgb[c], 0.0, 1e30);
+  const double f = 1.0 / (1.0 + kLum[0] * v[0] + kLum[1] * v[1] + kLum[2] * v[2]);
+  for (int c = 0; c < 3; ++c) rgb[c] = std::isnan(v[c]) ? v[c] : std::clamp(v[c] * f, 0.0, 1.0);
 }
 
 Image xyz_to_linear_srgb(const Image& xyz) {
@@ -351,44 +382,71 @@ Image xyz_to_linear_srgb(const Image& xyz) {
   return rgb;
 }
 
-HdrFlipExposures hdr_flip_exposures(const Image& ref_xyz) {
-  // x_max: positive root of (k0 - t k3) x^2 + (k1 - t k4) x + (k2 - t k5) = 0, t = 0.85.
+HdrFlipExposures hdr_flip_exposures(const Image& ref_xyz, FlipToneMapper tm) {
+  // x_max: larger root of (k0 - t k3) x^2 + (k1 - t k4) x + (k2 - t k5) = 0, t = 0.85 (linear when the
+  // quadratic term vanishes, as for Reinhard).
+  const double* k = tone_coefficients(tm);
   const double t = kToneTarget;
-  const double c0 = (kAces[1] - kAces[4] * t) / (kAces[0] - kAces[3] * t);
-  const double c1 = (kAces[2] - kAces[5] * t) / (kAces[0] - kAces[3] * t);
-  const double x_max = -0.5 * c0 + std::sqrt(0.25 * c0 * c0 - c1);
+  const double qa = k[0] - t * k[3], qb = k[1] - t * k[4], qc = k[2] - t * k[5];
+  double x_max;
+  if (qa == 0.0) {
+    x_max = -qc / qb;
+  } else {
+    const double d1 = -0.5 * qb / qa;
+    x_max = d1 + std::sqrt(d1 * d1 - qc / qa);
+  }
 
   const Image rgb = xyz_to_linear_srgb(ref_xyz);
-  const Mat3& M = rec709().rgb2xyz;
   std::vector<double> Y;
   Y.reserve(rgb.pixel_count());
   for (std::size_t i = 0; i < rgb.pixel_count(); ++i) {
-    const double r = std::max(0.0f, rgb.data[3 * i]), g = std::max(0.0f, rgb.data[3 * i + 1]),
-                 b = std::max(0.0f, rgb.data[3 * i + 2]);
-    const double y = M[3] * r + M[4] * g + M[5] * b;
+    const float* p = rgb.data.data() + 3 * i;
+    const double y = kLum[0] * p[0] + kLum[1] * p[1] + kLum[2] * p[2];
     if (std::isfinite(y)) Y.push_back(y);
   }
   HdrFlipExposures e;
   if (Y.empty()) return e;
   const double y_hi = *std::max_element(Y.begin(), Y.end());
   if (!(y_hi > 0.0)) return e;
-  auto median = [](std::vector<double>& v) {  // numpy percentile 50: mean of the middle two when even
+  auto upper_median = [](std::vector<double>& v) {  // FLIP: element n/2 of the sorted values
     const std::size_t m = v.size() / 2;
     std::nth_element(v.begin(), v.begin() + m, v.end());
-    const double hi = v[m];
-    if (v.size() % 2) return hi;
-    return 0.5 * (*std::max_element(v.begin(), v.begin() + m) + hi);
+    return v[m];
   };
-  double y_lo = median(Y);
+  double y_lo = upper_median(Y);
   if (!(y_lo > 0.0)) {
     std::vector<double> pos;
     for (double y : Y)
       if (y > 0.0) pos.push_back(y);
-    y_lo = median(pos);
+    y_lo = upper_median(pos);
   }
   e.start = std::log2(x_max / y_hi);
   e.stop = std::log2(x_max / y_lo);
-  e.count = std::max(2, int(std::ceil(e.stop - e.start)));
+  e.count = std::max(2, int(std::ceil(e.stop - e.start - 1e-5)));
+  return e;
+}
+
+HdrFlipExposures resolve_hdr_flip_exposures(const Image& ref_xyz, const HdrFlipOptions& o) {
+  auto bad = [](const std::string& what) { throw std::invalid_argument("HDR-FLIP: " + what); };
+  if (std::isinf(o.start_exposure)) bad("start exposure must be finite");
+  if (std::isinf(o.stop_exposure)) bad("stop exposure must be finite");
+  if (o.num_exposures < 0) bad("number of exposures must be >= 1 (or 0 for automatic), got " + std::to_string(o.num_exposures));
+  const bool auto_start = std::isnan(o.start_exposure), auto_stop = std::isnan(o.stop_exposure);
+  HdrFlipExposures e;
+  if (auto_start || auto_stop) e = hdr_flip_exposures(ref_xyz, o.tone_mapper);
+  if (!auto_start) e.start = o.start_exposure;
+  if (!auto_stop) e.stop = o.stop_exposure;
+  if (e.start > e.stop) {
+    auto num = [](double v) {
+      std::ostringstream s;
+      s << v;
+      return s.str();
+    };
+    bad("start exposure " + num(e.start) + (auto_start ? " (computed from the reference)" : "") +
+        " is above stop exposure " + num(e.stop) + (auto_stop ? " (computed from the reference)" : ""));
+  }
+  if (o.num_exposures > 0) e.count = o.num_exposures;
+  else if (!auto_start || !auto_stop) e.count = std::max(2, int(std::ceil(e.stop - e.start - 1e-5)));
   return e;
 }
 
@@ -401,8 +459,8 @@ Image ldr_flip_map_linear_srgb(const Image& test_rgb, const Image& ref_rgb, doub
   const FlipKernels K = make_kernels(ppd);
   Work W;
   Prepared pt, pr;
-  prepare(test_rgb, 0.0, K, W, pt);
-  prepare(ref_rgb, 0.0, K, W, pr);
+  prepare(test_rgb, 0.0, FlipToneMapper::Aces, K, W, pt);
+  prepare(ref_rgb, 0.0, FlipToneMapper::Aces, K, W, pr);
   combine(pt, pr, out.data.data(), false);
   return out;
 }
@@ -413,14 +471,21 @@ Image ldr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd) {
 }
 
 Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd) {
+  return hdr_flip_map(test_xyz, ref_xyz, ppd, HdrFlipOptions{});
+}
+
+Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd, const HdrFlipOptions& options,
+                   HdrFlipExposures* used) {
   require_same_size(test_xyz, ref_xyz, "hdr_flip_map");
   check_ppd(ppd, "hdr_flip_map");
   const int w = test_xyz.width, h = test_xyz.height;
   Image out(w, h, 1, 0.0f);
+  const HdrFlipExposures ex = resolve_hdr_flip_exposures(ref_xyz, options);
+  if (used) *used = ex;
   if (out.pixel_count() == 0) return out;
   const Image t_rgb = xyz_to_linear_srgb(test_xyz), r_rgb = xyz_to_linear_srgb(ref_xyz);
-  const HdrFlipExposures ex = hdr_flip_exposures(ref_xyz);
   const FlipKernels K = make_kernels(ppd);
+  const FlipToneMapper tm = options.tone_mapper;
   const double step = (ex.stop - ex.start) / std::max(ex.count - 1, 1);
   // Exposures are independent: spread them over the cores, each worker keeping its own maximum.
   const int workers = std::max(1, std::min<int>(ex.count, int(std::thread::hardware_concurrency())));
@@ -433,8 +498,8 @@ Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd) {
     mx.assign(out.pixel_count(), 0.0f);
     for (int i = next++; i < ex.count; i = next++) {
       const double scale = std::exp2(ex.start + i * step);
-      prepare(t_rgb, scale, K, W, pt);
-      prepare(r_rgb, scale, K, W, pr);
+      prepare(t_rgb, scale, tm, K, W, pt);
+      prepare(r_rgb, scale, tm, K, W, pr);
       combine(pt, pr, mx.data(), true);
     }
   };

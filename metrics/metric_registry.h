@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/util/image.h"
+#include "metrics/flip.h"
 
 namespace glintlab::metrics {
 
@@ -21,7 +22,7 @@ std::vector<std::string> metric_names();  // {"deltaE2000", "deltaEITP", "flip",
 
 struct MetricOptions {
   double itp_luminance_nits = 100;
-  double flip_ppd = 67.0;
+  double flip_ppd = kFlipDefaultPpd;  // FLIP v1.6 default: 67.0206 px per degree
   bool flip_hdr = true;
   double psnr_peak = 1.0;
   // Where per-pixel metrics are measured: "" = scene-referred (CIE XYZ D65 of the scene values);

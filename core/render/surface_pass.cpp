@@ -4,13 +4,13 @@
 #include "core/vk/shader_compiler.h"
 
 #include <cstring>
-#include <random>
 
 namespace glintlab::core {
 
 namespace {
 
 constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
 VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShaderModule m) {
@@ -29,7 +29,7 @@ VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShader
 enum class Draw { DepthPrepass, Shade, Sky };
 
 Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
-                                VkShaderModule fs, Draw draw, int w, int h) {
+                                VkShaderModule fs, Draw draw, bool motion) {
   const bool with_vertices = draw != Draw::Sky;
   VkPipelineShaderStageCreateInfo stages[] = {stage_info(VK_SHADER_STAGE_VERTEX_BIT, vs),
                                               stage_info(VK_SHADER_STAGE_FRAGMENT_BIT, fs)};
@@ -48,13 +48,13 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   }
   VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkViewport viewport{0, 0, float(w), float(h), 0, 1};
-  VkRect2D scissor{{0, 0}, {uint32_t(w), uint32_t(h)}};
   VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   vp.viewportCount = 1;
-  vp.pViewports = &viewport;
   vp.scissorCount = 1;
-  vp.pScissors = &scissor;
+  VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dyn.dynamicStateCount = 2;
+  dyn.pDynamicStates = dynamic;
   VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   rs.polygonMode = VK_POLYGON_MODE_FILL;
   rs.cullMode = VK_CULL_MODE_NONE;  // surfaces are seen from both sides (grazing, below the plane)
@@ -68,18 +68,20 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   ds.depthCompareOp = draw == Draw::DepthPrepass ? VK_COMPARE_OP_LESS
                       : draw == Draw::Shade      ? VK_COMPARE_OP_EQUAL
                                                  : VK_COMPARE_OP_LESS_OR_EQUAL;
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.blendEnable = draw == Draw::DepthPrepass ? VK_FALSE : VK_TRUE;
-  blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.colorBlendOp = VK_BLEND_OP_ADD;
-  blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.alphaBlendOp = VK_BLEND_OP_ADD;
-  blend.colorWriteMask = draw == Draw::DepthPrepass ? 0 : 0xf;
+  VkPipelineColorBlendAttachmentState blend[2] = {};
+  blend[0].blendEnable = draw == Draw::DepthPrepass ? VK_FALSE : VK_TRUE;  // accumulate weighted samples
+  blend[0].srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend[0].dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend[0].colorBlendOp = VK_BLEND_OP_ADD;
+  blend[0].srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend[0].dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend[0].alphaBlendOp = VK_BLEND_OP_ADD;
+  blend[0].colorWriteMask = draw == Draw::DepthPrepass ? 0 : 0xf;
+  blend[1].blendEnable = VK_FALSE;  // motion: the last sample's value
+  blend[1].colorWriteMask = draw == Draw::DepthPrepass ? 0 : 0xf;
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = 1;
-  cb.pAttachments = &blend;
+  cb.attachmentCount = motion ? 2 : 1;
+  cb.pAttachments = blend;
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
   ci.stageCount = draw == Draw::DepthPrepass ? 1 : 2;  // depth only: no fragment shader
   ci.pStages = stages;
@@ -90,6 +92,7 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   ci.pMultisampleState = &ms;
   ci.pDepthStencilState = &ds;
   ci.pColorBlendState = &cb;
+  ci.pDynamicState = &dyn;
   ci.layout = layout;
   ci.renderPass = rp;
   VkPipeline p;
@@ -97,47 +100,56 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   return Pipeline(ctx.device(), p);
 }
 
-RenderPass make_render_pass(const VkContext& ctx) {
-  VkAttachmentDescription att[2] = {};
-  att[0].format = kColorFormat;
-  att[0].samples = VK_SAMPLE_COUNT_1_BIT;
-  att[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // cleared once per frame, accumulated over samples
-  att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[0].initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  att[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  att[1].format = kDepthFormat;
-  att[1].samples = VK_SAMPLE_COUNT_1_BIT;
-  att[1].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[1].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  att[1].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  VkAttachmentReference color_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+// Colour (and motion) attachments are loaded and kept: samples accumulate
+// across one render-pass instance per sample; the pass clears them itself in
+// the first instance. The frame graph puts every attachment in its attachment
+// layout before the pass and expects it there after.
+RenderPass make_render_pass(const VkContext& ctx, bool motion) {
+  std::vector<VkAttachmentDescription> att;
+  auto colour = [](VkFormat f) {
+    VkAttachmentDescription a{};
+    a.format = f;
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = a.finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    return a;
+  };
+  att.push_back(colour(kColorFormat));
+  if (motion) att.push_back(colour(kMotionFormat));
+  VkAttachmentDescription depth{};
+  depth.format = kDepthFormat;
+  depth.samples = VK_SAMPLE_COUNT_1_BIT;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.initialLayout = depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  att.push_back(depth);
+  VkAttachmentReference color_refs[2] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                         {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
+  VkAttachmentReference depth_ref{uint32_t(att.size() - 1), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   VkSubpassDescription sub{};
   sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  sub.colorAttachmentCount = 1;
-  sub.pColorAttachments = &color_ref;
+  sub.colorAttachmentCount = motion ? 2 : 1;
+  sub.pColorAttachments = color_refs;
   sub.pDepthStencilAttachment = &depth_ref;
   // Orders this sample's blending and depth clear after the previous sample's
-  // (and the colour clear) writes.
+  // writes (the instances follow each other in one command buffer).
   VkSubpassDependency dep{};
   dep.srcSubpass = VK_SUBPASS_EXTERNAL;
   dep.dstSubpass = 0;
-  dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
-                     VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
                      VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                      VK_ACCESS_TRANSFER_WRITE_BIT;
+  dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  ci.attachmentCount = 2;
-  ci.pAttachments = att;
+  ci.attachmentCount = uint32_t(att.size());
+  ci.pAttachments = att.data();
   ci.subpassCount = 1;
   ci.pSubpasses = &sub;
   ci.dependencyCount = 1;
@@ -149,60 +161,14 @@ RenderPass make_render_pass(const VkContext& ctx) {
 
 }  // namespace
 
-// ---------------------------------------------------------------- SceneGpu
-SceneGpu::SceneGpu(const VkContext& ctx, const Mesh& mesh, const EnvironmentTexture& env) {
-  if (mesh.vertices.empty() || mesh.indices.empty()) throw VulkanError("SceneGpu: the mesh is empty");
-  vertices_ = Buffer(ctx, mesh.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-  vertices_.upload(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vertex));
-  indices_ = Buffer(ctx, mesh.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-  indices_.upload(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
-  index_count_ = uint32_t(mesh.indices.size());
-
-  if (env.width == 0 || env.height == 0 || env.mips_rgba.empty())
-    throw VulkanError("SceneGpu: the environment texture is empty");
-  env_map_ = Image2D(ctx, env.width, env.height, kColorFormat,
-                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, uint32_t(env.mips_rgba.size()));
-  upload_rgba32f_mips(ctx, env_map_, env.mips_rgba);
-  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  si.magFilter = VK_FILTER_LINEAR;
-  si.minFilter = VK_FILTER_LINEAR;
-  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  si.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;         // azimuth wraps
-  si.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;  // poles clamp
-  si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  si.maxLod = float(env.mips_rgba.size());
-  VkSampler s;
-  vk_check(vkCreateSampler(ctx.device(), &si, nullptr, &s), "vkCreateSampler");
-  sampler_ = Sampler(ctx.device(), s);
-}
-
-// ---------------------------------------------------------------- SurfacePass
-SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, int width, int height,
-                         const SurfaceShader& shader, bool draw_sky)
-    : ctx_(ctx), scene_(scene), width_(width), height_(height), draw_sky_(draw_sky) {
-  if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
-    throw VulkanError("SurfacePass: resolution " + std::to_string(width) + "x" + std::to_string(height) +
-                      " is outside 1..16384");
+SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePassOptions options)
+    : ctx_(ctx), scene_(scene), opt_(std::move(options)) {
   if (!ctx.format_supports(kColorFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
     throw VulkanError(ctx.info().name + " cannot blend into RGBA32F attachments, which sample accumulation needs");
-
-  color_ = Image2D(ctx, uint32_t(width), uint32_t(height), kColorFormat,
-                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-  depth_ = Image2D(ctx, uint32_t(width), uint32_t(height), kDepthFormat,
-                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, 1, VK_IMAGE_ASPECT_DEPTH_BIT);
-  render_pass_ = make_render_pass(ctx);
-  VkImageView views[] = {color_.view(), depth_.view()};
-  VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fi.renderPass = render_pass_.get();
-  fi.attachmentCount = 2;
-  fi.pAttachments = views;
-  fi.width = uint32_t(width);
-  fi.height = uint32_t(height);
-  fi.layers = 1;
-  VkFramebuffer fb;
-  vk_check(vkCreateFramebuffer(ctx.device(), &fi, nullptr, &fb), "vkCreateFramebuffer");
-  framebuffer_ = Framebuffer(ctx.device(), fb);
+  if (opt_.motion && !ctx.independent_blend())
+    throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
+                      "colour need");
+  render_pass_ = make_render_pass(ctx, opt_.motion);
 
   std::vector<VkDescriptorSetLayoutBinding> bindings = {
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
@@ -213,27 +179,30 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, int width,
                                  VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
 
   ShaderCompiler& sc = default_shader_compiler();
-  CompiledShader vs = sc.compile("passes/surface.vert", ShaderStage::Vertex, shader.defines);
-  CompiledShader fs = sc.compile(shader.fragment, ShaderStage::Fragment, shader.defines);
+  std::vector<std::string> defines = opt_.program.defines;
+  defines.push_back(std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0"));
+  CompiledShader vs = sc.compile("passes/surface.vert", ShaderStage::Vertex, defines);
+  CompiledShader fs = sc.compile(opt_.program.fragment, ShaderStage::Fragment, defines);
   fragment_hash_ = fs.source_hash;
   ShaderModule vsm = make_shader_module(ctx, vs.spirv), fsm = make_shader_module(ctx, fs.spirv);
   depth_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), VK_NULL_HANDLE,
-                                           Draw::DepthPrepass, width, height);
-  surface_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), fsm.get(),
-                                             Draw::Shade, width, height);
-  if (draw_sky_) {
+                                           Draw::DepthPrepass, opt_.motion);
+  surface_pipeline_ =
+      make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), fsm.get(), Draw::Shade, opt_.motion);
+  if (opt_.sky) {
+    std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0")};
     CompiledShader svs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
-    CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment);
+    CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment, sky_defines);
     ShaderModule svm = make_shader_module(ctx, svs.spirv), sfm = make_shader_module(ctx, sfs.spirv);
-    sky_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), svm.get(), sfm.get(), Draw::Sky,
-                                           width, height);
+    sky_pipeline_ =
+        make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), svm.get(), sfm.get(), Draw::Sky, opt_.motion);
   }
 
   frame_ubo_ = Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-  size_t mat_bytes = std::max<size_t>(shader.material.size(), 16);
+  const size_t mat_bytes = std::max<size_t>(opt_.program.block.size(), 16);
   material_ubo_ = Buffer(ctx, mat_bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   std::memset(material_ubo_.mapped(), 0, mat_bytes);
-  if (!shader.material.empty()) material_ubo_.upload(shader.material.data(), shader.material.size());
+  if (!opt_.program.block.empty()) material_ubo_.upload(opt_.program.block.data(), opt_.program.block.size());
   descriptors_ = make_descriptor_set(ctx, set_layout_.get(), bindings);
   write_buffer_descriptor(ctx, descriptors_.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frame_ubo_.handle(),
                           sizeof(FrameUniforms));
@@ -241,97 +210,94 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, int width,
                           mat_bytes);
   write_image_descriptor(ctx, descriptors_.set, 2, scene.env_map().view(), scene.env_sampler(),
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
 
-  if (ctx.timestamps_supported()) {
-    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    qi.queryCount = 2;
-    VkQueryPool qp;
-    vk_check(vkCreateQueryPool(ctx.device(), &qi, nullptr, &qp), "vkCreateQueryPool");
-    queries_ = QueryPool(ctx.device(), qp);
+void SurfacePass::declare(PassIO& io) const {
+  // The pass clears colour and motion itself, so their old contents are dropped.
+  io.write(opt_.color_target, kColorFormat, TargetUse::ColorAttachment);
+  if (opt_.motion) io.write(opt_.motion_target, kMotionFormat, TargetUse::ColorAttachment);
+  io.write(opt_.depth_target, kDepthFormat, TargetUse::DepthAttachment);
+}
+
+void SurfacePass::setup(const TargetSet& t) {
+  width_ = t.width();
+  height_ = t.height();
+  std::vector<VkImageView> views = {t.image(opt_.color_target).view()};
+  if (opt_.motion) views.push_back(t.image(opt_.motion_target).view());
+  views.push_back(t.image(opt_.depth_target).view());
+  VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fi.renderPass = render_pass_.get();
+  fi.attachmentCount = uint32_t(views.size());
+  fi.pAttachments = views.data();
+  fi.width = uint32_t(width_);
+  fi.height = uint32_t(height_);
+  fi.layers = 1;
+  VkFramebuffer fb;
+  vk_check(vkCreateFramebuffer(ctx_.device(), &fi, nullptr, &fb), "vkCreateFramebuffer");
+  framebuffer_ = Framebuffer(ctx_.device(), fb);
+}
+
+void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet&) {
+  if (in.samples.empty()) throw VulkanError("surface pass \"" + opt_.name + "\": a frame needs at least one sample");
+  frame_ubo_.upload(&in.uniforms, sizeof in.uniforms);
+  VkClearValue clears[3] = {};
+  clears[opt_.motion ? 2 : 1].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rb.renderPass = render_pass_.get();
+  rb.framebuffer = framebuffer_.get();
+  rb.renderArea = {{0, 0}, {uint32_t(width_), uint32_t(height_)}};
+  rb.clearValueCount = opt_.motion ? 3 : 2;
+  rb.pClearValues = clears;
+  VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
+  VkRect2D scissor{{0, 0}, {uint32_t(width_), uint32_t(height_)}};
+  VkDeviceSize zero_offset = 0;
+  VkBuffer vb = scene_.vertices().handle();
+  for (size_t i = 0; i < in.samples.size(); ++i) {
+    vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
+    if (i == 0) {  // the accumulation starts from zero; motion from "no surface"
+      VkClearAttachment ca[2] = {};
+      ca[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+      ca[0].colorAttachment = 0;
+      ca[1].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+      ca[1].colorAttachment = 1;
+      ca[1].clearValue.color = {{0.0f, 0.0f, 0.0f, -1.0f}};
+      VkClearRect rect{scissor, 0, 1};
+      vkCmdClearAttachments(cmd, opt_.motion ? 2 : 1, ca, 1, &rect);
+    }
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &descriptors_.set, 0, nullptr);
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(SamplePush), &in.samples[i]);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero_offset);
+    vkCmdBindIndexBuffer(cmd, scene_.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.get());
+    vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surface_pipeline_.get());
+    vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
+    if (opt_.sky) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_pipeline_.get());
+      vkCmdDraw(cmd, 3, 1, 0, 0);
+    }
+    vkCmdEndRenderPass(cmd);
   }
 }
 
-FrameOutput SurfacePass::render(const FrameUniforms& frame, const std::vector<SamplePush>& samples,
-                                const std::string& label) {
-  if (samples.empty()) throw VulkanError("SurfacePass::render: no samples");
-  frame_ubo_.upload(&frame, sizeof frame);
-  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
-    if (queries_.get()) {
-      vkCmdResetQueryPool(cmd, queries_.get(), 0, 2);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_.get(), 0);
-    }
-    transition(cmd, color_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-               VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    VkClearColorValue zero{};
-    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, color_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
-    transition(cmd, color_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-               VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    VkClearValue clears[2] = {};
-    clears[1].depthStencil = {1.0f, 0};
-    VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    rb.renderPass = render_pass_.get();
-    rb.framebuffer = framebuffer_.get();
-    rb.renderArea = {{0, 0}, {uint32_t(width_), uint32_t(height_)}};
-    rb.clearValueCount = 2;
-    rb.pClearValues = clears;
-    VkDeviceSize zero_offset = 0;
-    VkBuffer vb = scene_.vertices().handle();
-    for (const SamplePush& s : samples) {
-      vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &descriptors_.set, 0,
-                              nullptr);
-      vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                         sizeof(SamplePush), &s);
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero_offset);
-      vkCmdBindIndexBuffer(cmd, scene_.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.get());
-      vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surface_pipeline_.get());
-      vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
-      if (draw_sky_) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_pipeline_.get());
-        vkCmdDraw(cmd, 3, 1, 0, 0);
-      }
-      vkCmdEndRenderPass(cmd);
-    }
-    if (queries_.get()) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_.get(), 1);
-    transition(cmd, color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  });
-
-  FrameOutput out;
-  out.color = Image(width_, height_, 4);
-  out.color.data = read_back(ctx_, color_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-  PassTiming t{label, 0.0};
-  if (queries_.get()) {
-    uint64_t ts[2] = {0, 0};
-    vk_check(vkGetQueryPoolResults(ctx_.device(), queries_.get(), 0, 2, sizeof ts, ts, sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-             "vkGetQueryPoolResults");
-    uint32_t bits = ctx_.timestamp_valid_bits();
-    uint64_t mask = bits >= 64 ? ~uint64_t(0) : ((uint64_t(1) << bits) - 1);
-    uint64_t ticks = (ts[1] - ts[0]) & mask;
-    t.gpu_ms = double(ticks) * ctx_.timestamp_period_ns() * 1e-6;
-  }
-  out.timings.push_back(t);
-  return out;
+// ---------------------------------------------------------------- SurfaceRenderer
+SurfaceRenderer::SurfaceRenderer(const VkContext& ctx, const SceneGpu& scene, int width, int height,
+                                 SurfacePassOptions options)
+    : graph_(ctx, width, height) {
+  std::vector<std::string> readback = {options.color_target};
+  if (options.motion) readback.push_back(options.motion_target);
+  pass_ = static_cast<SurfacePass*>(&graph_.add(std::make_unique<SurfacePass>(ctx, scene, std::move(options))));
+  graph_.build(readback);
 }
 
-std::vector<glm::vec2> stratified_offsets(int n, uint32_t seed) {
-  std::vector<glm::vec2> out;
-  if (n <= 0) return out;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  out.reserve(size_t(n) * n);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      out.emplace_back((float(i) + u(rng)) / float(n) - 0.5f, (float(j) + u(rng)) / float(n) - 0.5f);
-  return out;
+FrameResult SurfaceRenderer::render(const FrameUniforms& frame, const std::vector<SamplePush>& samples) {
+  FrameInputs in;
+  in.uniforms = frame;
+  in.samples = samples;
+  return graph_.execute(in);
 }
 
 }  // namespace glintlab::core

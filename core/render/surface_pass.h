@@ -1,112 +1,57 @@
-// The forward renderer: a GPU copy of the scene (mesh + environment), and a
-// surface pass that draws it with one fragment shader (the sand material, a
-// debug/test shader, ...) into an RGBA32F target. A frame is the mean of one
-// draw per sample: one sample for a normal frame, N jittered samples for a
-// supersampled or reference frame (fp32 additive blending, box filter). Each
-// sample is a depth pre-pass, then shading with depth EQUAL, so exactly the
-// nearest surface is shaded and accumulated, whatever the draw order.
+// The surface pass: draws the scene's mesh with a material program
+// (core/material/program.h) into the "color" target, RGBA32F scene-linear,
+// alpha = surface coverage. A frame is the mean of one draw per sample of
+// FrameInputs::samples (fp32 additive blending, box filter): one sample for a
+// normal frame, N jittered ones for supersampling or the reference. Each
+// sample is a depth pre-pass, then shading with depth test EQUAL, so exactly
+// the nearest surface is shaded and accumulated whatever the draw order; then
+// (option `sky`) the environment fills what no surface covers.
+//
+// With option `motion` it also writes the "motion" target (RGBA32F, layout in
+// shaders/common/motion.glsl: motion vector in pixels, distance now, distance
+// in the previous frame) from the last sample's nearest surface, and the
+// "depth" target (D32) is the last sample's depth buffer.
 #pragma once
 
-#include "core/vk/gpu_resources.h"
-#include "core/util/image.h"
+#include "core/material/program.h"
+#include "core/render/frame_graph.h"
+#include "core/render/pass.h"
+#include "core/render/scene_gpu.h"
 #include "core/vk/pipeline.h"
-#include "core/vk/vk_context.h"
 
-#include <glm/glm.hpp>
-
-#include <array>
-#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace glintlab::core {
 
-struct Mesh;
-
-// std140 mirror of FrameUBO in shaders/common/frame.glsl.
-struct FrameUniforms {
-  glm::mat4 model{1.0f};
-  glm::mat4 normal_matrix{1.0f};
-  glm::mat4 prev_view_proj{1.0f};
-  glm::mat4 inv_view_proj{1.0f};
-  glm::vec4 camera_pos{0.0f};
-  glm::vec4 sun_dir{0.0f, 1.0f, 0.0f, 0.0f};
-  glm::vec4 sun_L{0.0f};
-  glm::vec4 resolution{0.0f};
-  glm::vec4 env_sh[9] = {};
-  glm::vec4 env_params{1.0f, 1.0f, 0.0f, 0.0f};
-};
-static_assert(sizeof(FrameUniforms) == 4 * 64 + 4 * 16 + 9 * 16 + 16, "FrameUniforms must match frame.glsl");
-
-// Push constants of shaders/common/frame.glsl.
-struct SamplePush {
-  glm::mat4 view_proj{1.0f};
-  glm::vec4 jitter_weight{0.0f, 0.0f, 1.0f, 0.0f};  // jitter px, weight, sample index
-};
-static_assert(sizeof(SamplePush) == 80, "SamplePush must match frame.glsl");
-
-// Environment as the GPU needs it: an RGBA32F lat-long mip chain (level 0
-// first, each level half the size of the previous, rounded down, at least 1).
-struct EnvironmentTexture {
-  uint32_t width = 0, height = 0;
-  std::vector<std::vector<float>> mips_rgba;
+struct SurfacePassOptions {
+  std::string name = "surface";  // the pass's name in timings
+  MaterialProgram program;
+  bool sky = true;               // draw the environment where no surface is
+  bool motion = false;           // also write motion vectors and distances
+  std::string color_target = "color";
+  std::string motion_target = "motion";
+  std::string depth_target = "depth";
 };
 
-// Everything that is uploaded once per run and shared by every variant.
-class SceneGpu {
+class SurfacePass final : public Pass {
  public:
-  SceneGpu(const VkContext& ctx, const Mesh& mesh, const EnvironmentTexture& env);
+  SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePassOptions options);
 
-  const Buffer& vertices() const { return vertices_; }
-  const Buffer& indices() const { return indices_; }
-  uint32_t index_count() const { return index_count_; }
-  const Image2D& env_map() const { return env_map_; }
-  VkSampler env_sampler() const { return sampler_.get(); }
+  std::string name() const override { return opt_.name; }
+  void declare(PassIO& io) const override;
+  void setup(const TargetSet& targets) override;
+  void record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet& targets) override;
 
- private:
-  Buffer vertices_, indices_;
-  uint32_t index_count_ = 0;
-  Image2D env_map_;
-  Sampler sampler_;
-};
-
-struct SurfaceShader {
-  std::string fragment;               // path under shaders/, e.g. "passes/sand.frag"
-  std::vector<std::string> defines;   // compile-time features ("NAME" or "NAME=VALUE")
-  std::vector<std::byte> material;    // contents of the material UBO (set 0, binding 1); may be empty
-};
-
-struct PassTiming {
-  std::string pass;
-  double gpu_ms = 0;  // from GPU timestamps; 0 if the device has none
-};
-
-struct FrameOutput {
-  Image color;  // RGBA32F scene-linear; alpha = surface coverage
-  std::vector<PassTiming> timings;
-};
-
-class SurfacePass {
- public:
-  SurfacePass(const VkContext& ctx, const SceneGpu& scene, int width, int height, const SurfaceShader& shader,
-              bool draw_sky = true);
-
-  // Renders the mean of one draw per sample and reads it back. `label` names
-  // the pass in the timings ("forward", "reference").
-  FrameOutput render(const FrameUniforms& frame, const std::vector<SamplePush>& samples,
-                     const std::string& label = "forward");
-
-  int width() const { return width_; }
-  int height() const { return height_; }
+  const SurfacePassOptions& options() const { return opt_; }
+  // Hash of the preprocessed fragment source (part of a reference's cache key).
   const std::string& fragment_source_hash() const { return fragment_hash_; }
 
  private:
   const VkContext& ctx_;
   const SceneGpu& scene_;
-  int width_, height_;
-  bool draw_sky_;
+  SurfacePassOptions opt_;
   std::string fragment_hash_;
-  Image2D color_, depth_;
   RenderPass render_pass_;
   Framebuffer framebuffer_;
   DescriptorSetLayout set_layout_;
@@ -114,11 +59,21 @@ class SurfacePass {
   Pipeline depth_pipeline_, surface_pipeline_, sky_pipeline_;
   Buffer frame_ubo_, material_ubo_;
   DescriptorSet descriptors_;
-  QueryPool queries_;
+  int width_ = 0, height_ = 0;
 };
 
-// Sample offsets of an n x n stratified grid in [-0.5, 0.5)^2 pixels, each
-// jittered inside its stratum by a fixed-seed generator (reproducible).
-std::vector<glm::vec2> stratified_offsets(int n, uint32_t seed);
+// One frame of a graph holding only a surface pass with `options`: the
+// convenience tests and tools use. Reads back the colour (and the motion
+// target when options.motion is set).
+class SurfaceRenderer {
+ public:
+  SurfaceRenderer(const VkContext& ctx, const SceneGpu& scene, int width, int height, SurfacePassOptions options);
+  FrameResult render(const FrameUniforms& frame, const std::vector<SamplePush>& samples);
+  const SurfacePass& pass() const { return *pass_; }
+
+ private:
+  FrameGraph graph_;
+  SurfacePass* pass_ = nullptr;
+};
 
 }  // namespace glintlab::core

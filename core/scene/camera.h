@@ -38,14 +38,18 @@ glm::vec2 project_to_pixel(const glm::mat4& view_proj, glm::vec3 p_world, int wi
 // Everything the renderer needs for frame `index`. TAA convention: `view_proj` (and `proj`) carry
 // this frame's jitter; motion vectors are computed from the *_unjittered pair, which is exactly
 // the camera motion. `prev_view_proj` is frame index-1 with the previous frame's jitter.
-// Frame 0 has no predecessor: prev_* equal this frame's own matrices (zero motion).
+// Frame 0 and the first frame after a cut have no predecessor: prev_* equal this frame's own
+// matrices (zero motion).
 struct FrameCamera {
   int index = 0;
-  double time = 0;  // seconds, = index / fps
+  double time = 0;       // seconds, = index / fps
+  double prev_time = 0;  // the previous frame's time (= time in frame 0 and at a cut)
   CameraState state;
   glm::mat4 view{1.0f}, proj{1.0f}, view_proj{1.0f}, prev_view_proj{1.0f};
   glm::mat4 proj_unjittered{1.0f}, view_proj_unjittered{1.0f}, prev_view_proj_unjittered{1.0f};
-  glm::vec3 position{0.0f};  // world-space eye position (= state.position)
+  glm::vec3 position{0.0f};       // world-space eye position (= state.position)
+  glm::vec3 prev_position{0.0f};  // the previous frame's eye (= position in frame 0 and at a cut)
+  bool cut = false;               // a camera cut: frame `index` starts a new shot (no predecessor)
 };
 
 }  // namespace glintlab::core

@@ -113,6 +113,8 @@ CameraPath CameraPath::from_json(JsonReader& r) {
         kf.target = kf.position + forward_from(yaw, pitch);
       }
       kf.fov_y_deg = fov_of(k);
+      kf.cut = k.get_bool("cut", false);
+      if (kf.cut && i == 0) k.fail("cut", "the first keyframe cannot be a cut (a cut starts a new shot after another)");
       k.finish();
       p.keys_.push_back(kf);
     }
@@ -190,14 +192,19 @@ CameraState CameraPath::at(double t) const {
     // Segment i with t_i <= t < t_{i+1}.
     size_t i = size_t(std::upper_bound(K.begin(), K.end(), t, [](double a, const Keyframe& k) { return a < k.time; }) -
                       K.begin()) - 1;
+    if (K[i + 1].cut) {  // the shot ended at key i; the camera holds it until the cut
+      c.position = K[i].position, c.target = K[i].target, c.fov_y_deg = K[i].fov_y_deg;
+      return c;
+    }
     const double h = K[i + 1].time - K[i].time, u = (t - K[i].time) / h;
     c.fov_y_deg = float((1.0 - u) * K[i].fov_y_deg + u * K[i + 1].fov_y_deg);
     auto interp = [&](glm::vec3 Keyframe::*member) -> glm::vec3 {
       glm::dvec3 p0(K[i].*member), p1(K[i + 1].*member);
       if (!catmull_rom_) return glm::vec3((1.0 - u) * p0 + u * p1);
       // Time-knot Catmull-Rom tangents (units per second), one-sided at the ends.
+      // A cut key starts a new shot: tangents never reach across it.
       auto tangent = [&](size_t j) {
-        size_t a = j == 0 ? 0 : j - 1, b = j + 1 == n ? j : j + 1;
+        size_t a = (j == 0 || K[j].cut) ? j : j - 1, b = (j + 1 == n || K[j + 1].cut) ? j : j + 1;
         return (glm::dvec3(K[b].*member) - glm::dvec3(K[a].*member)) / (K[b].time - K[a].time);
       };
       glm::dvec3 m0 = tangent(i), m1 = tangent(i + 1);
@@ -246,16 +253,29 @@ FrameCamera CameraPath::frame(int k, int width, int height, glm::vec2 jitter_px,
   f.proj_unjittered = projection(f.state, width, height);
   f.view_proj = f.proj * f.view;
   f.view_proj_unjittered = f.proj_unjittered * f.view;
-  if (k <= 0) {  // no predecessor: zero motion
+  f.cut = is_cut(k);
+  if (k <= 0 || f.cut) {  // no predecessor in this shot: zero motion
     f.prev_view_proj = f.view_proj;
     f.prev_view_proj_unjittered = f.view_proj_unjittered;
+    f.prev_position = f.position;
+    f.prev_time = f.time;
   } else {
+    f.prev_time = frame_time(k - 1);
     CameraState prev = at(frame_time(k - 1));
+    f.prev_position = prev.position;
     glm::mat4 prev_view = view_matrix(prev);
     f.prev_view_proj = projection(prev, width, height, prev_jitter_px) * prev_view;
     f.prev_view_proj_unjittered = projection(prev, width, height) * prev_view;
   }
   return f;
+}
+
+bool CameraPath::is_cut(int k) const {
+  if (k <= 0) return false;
+  const double t0 = frame_time(k - 1), t1 = frame_time(k);
+  for (const Keyframe& key : keys_)
+    if (key.cut && key.time > t0 && key.time <= t1) return true;
+  return false;
 }
 
 }  // namespace glintlab::core

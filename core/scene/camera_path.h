@@ -19,7 +19,10 @@
 //             and one-sided differences at the ends, so it passes through every key and is C1 in
 //             time even for unevenly spaced keys (centripetal knots would re-time the path).
 //             fov is always interpolated linearly (no overshoot). Outside [t_0, t_last] the
-//             end keys hold.
+//             end keys hold. A key with "cut": true starts a new shot: the camera holds the
+//             previous key until the cut time and jumps there; tangents never reach across a
+//             cut, and the first frame of the new shot has no predecessor (zero motion,
+//             FrameCamera::cut, temporal passes drop their history).
 //  orbit:     "center" [3], "radius" > 0, "height" (above center, default 0), "start_deg",
 //             "end_deg", "fov": position = center + (r cos a, height, r sin a), a = lerp(start, end, s),
 //             looks at center.
@@ -48,6 +51,7 @@ class CameraPath {
     double time = 0;
     glm::vec3 position{0.0f}, target{0.0f};
     float fov_y_deg = 45;
+    bool cut = false;  // a camera cut: this key starts a new shot
   };
 
   static CameraPath from_json(JsonReader& r);  // validates; calls r.finish(); throws ConfigError
@@ -63,6 +67,8 @@ class CameraPath {
   double duration() const { return double(frames_ - 1) / fps_; }  // time of the last frame
 
   CameraState at(double t) const;
+  // True when a cut key lies in (t_{k-1}, t_k]: frame k starts a new shot.
+  bool is_cut(int k) const;
   // Camera of frame k (see FrameCamera for the jitter convention). k in [0, frames) is the path;
   // other k evaluate at k / fps with the end keys held.
   FrameCamera frame(int k, int width, int height, glm::vec2 jitter_px = {0, 0},

@@ -195,6 +195,7 @@ MeshSpec MeshSpec::from_json(JsonReader& r) {
     if (float(s.layers - 1) * s.layer_spacing >= 1.0f)
       r.fail("layer_spacing", "(layers - 1) * layer_spacing must be < 1 so that every shell has a positive radius");
   }
+  if (auto m = r.optional_child("motion")) s.motion = ObjectMotion::from_json(*m);
   r.finish();
   return s;
 }

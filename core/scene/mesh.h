@@ -12,6 +12,8 @@
 //  - uv in [0, 1]^2.
 #pragma once
 
+#include "core/scene/object_motion.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -49,6 +51,7 @@ struct Mesh {
 //           (Kajs sec. 2.2) = `layers` concentric shells, shell k with radius r (1 - k·layer_spacing)
 //   dunes:  "amplitude" (default 1.5), "wavelength" (base feature size, default 8), "octaves"
 //           (default 4), "lacunarity" (default 2), "gain" (default 0.5), "seed" (default 1)
+//   any:    "motion": rigid motion of the mesh over time (core/scene/object_motion.h)
 struct MeshSpec {
   std::string type = "plane";
   float size = 10.0f;
@@ -61,6 +64,7 @@ struct MeshSpec {
   float lacunarity = 2.0f;
   float gain = 0.5f;
   uint32_t seed = 1;
+  ObjectMotion motion;  // "motion": rigid motion over time (core/scene/object_motion.h); default none
 
   static MeshSpec from_json(JsonReader& r);  // validates; calls r.finish()
 };

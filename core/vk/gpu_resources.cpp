@@ -102,7 +102,7 @@ uint32_t bytes_per_pixel(VkFormat format) {
   }
 }
 
-static uint32_t channel_count(VkFormat format) {
+uint32_t channel_count(VkFormat format) {
   switch (format) {
     case VK_FORMAT_R32G32B32A32_SFLOAT:
     case VK_FORMAT_R16G16B16A16_SFLOAT: return 4;
@@ -141,32 +141,31 @@ static float half_to_float(uint16_t h) {
   return f;
 }
 
-std::vector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout) {
+Buffer make_readback_buffer(const VkContext& ctx, const Image2D& img) {
+  return Buffer(ctx, padded_row_pitch(img.width(), img.format()) * img.height(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+}
+
+void record_readback(VkCommandBuffer cmd, const Image2D& img, const Buffer& staging) {
+  const VkDeviceSize pitch = padded_row_pitch(img.width(), img.format());
+  VkBufferImageCopy region{};
+  region.bufferRowLength = uint32_t(pitch / bytes_per_pixel(img.format()));  // texels per padded row
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {img.width(), img.height(), 1};
+  vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
+  VkBufferMemoryBarrier bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+  bb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  bb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  bb.buffer = staging.handle();
+  bb.size = VK_WHOLE_SIZE;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &bb, 0,
+                       nullptr);
+}
+
+std::vector<float> unpack_readback(const Image2D& img, const Buffer& staging) {
   const uint32_t w = img.width(), h = img.height();
   const uint32_t bpp = bytes_per_pixel(img.format());
   const VkDeviceSize pitch = padded_row_pitch(w, img.format());
-  Buffer staging(ctx, pitch * h, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    if (current_layout != VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)
-      transition(cmd, img, current_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                 VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.bufferRowLength = uint32_t(pitch / bpp);  // texels per padded row
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {w, h, 1};
-    vkCmdCopyImageToBuffer(cmd, img.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
-    VkBufferMemoryBarrier bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-    bb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    bb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    bb.buffer = staging.handle();
-    bb.size = VK_WHOLE_SIZE;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &bb, 0,
-                         nullptr);
-    if (current_layout != VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL && current_layout != VK_IMAGE_LAYOUT_UNDEFINED)
-      transition(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current_layout, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT);
-  });
   const uint32_t nc = channel_count(img.format());
   std::vector<float> out(size_t(w) * h * nc);
   const auto* base = static_cast<const unsigned char*>(staging.mapped());
@@ -184,6 +183,20 @@ std::vector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLa
     }
   }
   return out;
+}
+
+std::vector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout) {
+  Buffer staging = make_readback_buffer(ctx, img);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    if (current_layout != VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)
+      transition(cmd, img, current_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                 VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    record_readback(cmd, img, staging);
+    if (current_layout != VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL && current_layout != VK_IMAGE_LAYOUT_UNDEFINED)
+      transition(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current_layout, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT);
+  });
+  return unpack_readback(img, staging);
 }
 
 void upload_rgba32f_mips(const VkContext& ctx, Image2D& img, const std::vector<std::vector<float>>& mips) {

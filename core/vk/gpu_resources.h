@@ -70,6 +70,17 @@ uint32_t bytes_per_pixel(VkFormat format);
 // as a driver's linear layouts are; readback removes the padding.
 VkDeviceSize padded_row_pitch(uint32_t width, VkFormat format, VkDeviceSize alignment = 256);
 
+// Channels of the float formats the renderer uses.
+uint32_t channel_count(VkFormat format);
+
+// Readback inside a caller's command buffer: a host-visible buffer sized for
+// `img`, the copy of mip 0 (image in TRANSFER_SRC layout) followed by a
+// transfer -> host barrier, and after the submission has completed, the
+// pixels as tightly packed 32-bit floats (RGBA16F is widened exactly).
+Buffer make_readback_buffer(const VkContext& ctx, const Image2D& img);
+void record_readback(VkCommandBuffer cmd, const Image2D& img, const Buffer& staging);
+std::vector<float> unpack_readback(const Image2D& img, const Buffer& staging);
+
 // Copies mip 0 of a colour image (in TRANSFER_SRC layout) to host memory as
 // tightly packed 32-bit floats (RGBA16F is widened). Honours the padded row pitch.
 std::vector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout);

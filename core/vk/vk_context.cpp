@@ -209,9 +209,16 @@ VkContext::VkContext(const ContextOptions& options) : validation_(options.valida
     qci.queueFamilyIndex = queue_family_;
     qci.queueCount = 1;
     qci.pQueuePriorities = &prio;
+    // Independent blend: the surface pass accumulates colour by blending but
+    // writes motion vectors unblended in the same draw.
+    VkPhysicalDeviceFeatures supported{}, enabled{};
+    vkGetPhysicalDeviceFeatures(physical_, &supported);
+    enabled.independentBlend = supported.independentBlend;
+    independent_blend_ = supported.independentBlend == VK_TRUE;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
+    dci.pEnabledFeatures = &enabled;
     vk_check(vkCreateDevice(physical_, &dci, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 

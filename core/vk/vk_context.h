@@ -65,6 +65,9 @@ class VkContext {
   bool timestamps_supported() const { return timestamp_valid_bits_ > 0; }
   uint32_t timestamp_valid_bits() const { return timestamp_valid_bits_; }
 
+  // Whether the device blends colour attachments independently (enabled when supported).
+  bool independent_blend() const { return independent_blend_; }
+
   uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;
   bool format_supports(VkFormat format, VkFormatFeatureFlags features) const;
 
@@ -92,6 +95,7 @@ class VkContext {
   VkPhysicalDeviceMemoryProperties mem_props_{};
   DeviceInfo info_;
   bool validation_ = false;
+  bool independent_blend_ = false;
   mutable std::mutex messages_mutex_;
   std::vector<std::string> messages_;
 };

@@ -1,21 +1,33 @@
 #include "experiments/cli/compare.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <exception>
+#include <iomanip>
+#include <limits>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "core/util/atomic_file.h"
+#include "core/util/io_error.h"
+#include "experiments/cli/exit_codes.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/color/image_io.h"
 #include "metrics/color/measurement_space.h"
+#include "metrics/flip.h"
+#include "metrics/flip_pooling.h"
 #include "metrics/metric_registry.h"
+#include "metrics/pixel_scan.h"
 
 namespace glintlab {
 
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string join(const std::vector<std::string>& names) {
   std::string s;
@@ -24,6 +36,12 @@ std::string join(const std::vector<std::string>& names) {
 }
 
 std::string size_str(const Image& img) { return std::to_string(img.width) + "x" + std::to_string(img.height); }
+
+std::string num_str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 
 // The colour space an input file is in: --space if given, else the file's oiio:ColorSpace tag when
 // the config knows it, else scene_linear (said on err, so the assumption is never silent).
@@ -45,94 +63,403 @@ Image first_channel(const Image& map) {
   return one;
 }
 
+// Per pixel: true where any of the first three channels is NaN, infinite or negative.
+std::vector<bool> bad_pixels(const Image& img) {
+  const int nc = std::min(img.channels, 3);
+  std::vector<bool> bad(img.pixel_count(), false);
+  for (std::size_t i = 0; i < bad.size(); ++i)
+    for (int c = 0; c < nc; ++c) {
+      const float v = img.data[i * img.channels + c];
+      if (!std::isfinite(v) || v < 0.0f) bad[i] = true;
+    }
+  return bad;
+}
+
+std::size_t nonfinite_pixels(const Image& img) {
+  const metrics::PixelScan s = metrics::scan_pixels(img, 3);
+  return s.nan + s.infinite;  // a pixel can be in both: an upper bound of the count, > 0 exactly when any
+}
+
+nlohmann::json scan_json(const metrics::PixelScan& s) {
+  return {{"pixels", s.pixels}, {"nan", s.nan}, {"inf", s.infinite}, {"negative", s.negative}};
+}
+
+std::string scan_text(const metrics::PixelScan& s) {
+  return std::to_string(s.nan) + " NaN, " + std::to_string(s.infinite) + " Inf, " + std::to_string(s.negative) +
+         " negative (of " + std::to_string(s.pixels) + " pixels)";
+}
+
+nlohmann::json num_json(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string csv_num(double v) {
+  if (!std::isfinite(v)) return "";
+  std::ostringstream s;
+  s << std::setprecision(7) << v;
+  return s.str();
+}
+
+std::string csv_field(const std::string& s) {  // RFC 4180 quoting where needed
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+struct Input {
+  std::string path;
+  Image xyz;
+  metrics::PixelScan scan;
+  std::vector<bool> bad;          // per pixel, for the map
+  std::size_t converted_bad = 0;  // non-finite values the colour conversion produced from finite input
+};
+
+struct Evaluated {
+  metrics::MetricResult result;
+  metrics::FlipPooled pooled;  // flip only
+  bool is_flip = false;
+};
+
+struct TestResult {
+  const Input* test = nullptr;
+  std::vector<Evaluated> metrics;
+  bool clean = true;
+  bool threshold_exceeded = false;
+};
+
+struct FlipSetup {
+  bool hdr = true;
+  double ppd = metrics::kFlipDefaultPpd;
+  metrics::HdrFlipOptions hdr_options;
+  metrics::HdrFlipExposures exposures;  // resolved from the reference (HDR)
+};
+
+nlohmann::json flip_settings_json(const FlipSetup& f) {
+  nlohmann::json j = {{"mode", f.hdr ? "hdr" : "ldr"}, {"ppd", f.ppd}};
+  if (f.hdr) {
+    j["tone_mapper"] = enum_name(metrics::kFlipToneMapperNames, f.hdr_options.tone_mapper);
+    j["start_exposure"] = num_json(f.exposures.start);
+    j["stop_exposure"] = num_json(f.exposures.stop);
+    j["num_exposures"] = f.exposures.count;
+  }
+  return j;
+}
+
+std::string flip_settings_text(const FlipSetup& f) {
+  std::ostringstream s;
+  s << (f.hdr ? "HDR-FLIP" : "LDR-FLIP") << ", " << f.ppd << " px/deg";
+  if (f.hdr)
+    s << ", tone mapper " << enum_name(metrics::kFlipToneMapperNames, f.hdr_options.tone_mapper) << ", exposures "
+      << f.exposures.start << " to " << f.exposures.stop << " (" << f.exposures.count << ")";
+  return s.str();
+}
+
+nlohmann::json metrics_json(const TestResult& t) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const Evaluated& e : t.metrics) {
+    nlohmann::json m = {{"mean", num_json(e.result.mean)}, {"max", num_json(e.result.max)}};
+    if (e.is_flip) {
+      m["min"] = num_json(e.pooled.min);
+      m["weighted_median"] = num_json(e.pooled.weighted_median);
+      m["weighted_quartile_1"] = num_json(e.pooled.weighted_quartile_1);
+      m["weighted_quartile_3"] = num_json(e.pooled.weighted_quartile_3);
+    }
+    j[e.result.name] = m;
+  }
+  return j;
+}
+
+void print_text(const TestResult& t, const Input& ref, const FlipSetup& flip, const std::string& indent,
+                std::ostream& out) {
+  if (!t.test->scan.clean()) out << indent << "input test '" << t.test->path << "': " << scan_text(t.test->scan) << "\n";
+  if (!ref.scan.clean()) out << indent << "input ref '" << ref.path << "': " << scan_text(ref.scan) << "\n";
+  for (const Evaluated& e : t.metrics) {
+    const metrics::MetricResult& r = e.result;
+    out << indent << r.name << ": mean " << r.mean << " " << r.unit << ", max " << r.max << " " << r.unit << "\n";
+    if (e.is_flip) {
+      const metrics::FlipPooled& p = e.pooled;
+      out << indent << "  weighted median " << p.weighted_median << ", 1st weighted quartile " << p.weighted_quartile_1
+          << ", 3rd weighted quartile " << p.weighted_quartile_3 << ", min " << p.min << ", max " << p.max << "\n";
+      out << indent << "  " << flip_settings_text(flip) << "\n";
+    }
+  }
+}
+
+std::string csv_table(const std::vector<TestResult>& results, const Input& ref) {
+  std::ostringstream s;
+  s << "reference,test,metric,unit,mean,max,min,weighted_median,weighted_quartile_1,weighted_quartile_3,"
+       "test_nan,test_inf,test_negative,ref_nan,ref_inf,ref_negative\n";
+  for (const TestResult& t : results)
+    for (const Evaluated& e : t.metrics) {
+      const metrics::MetricResult& r = e.result;
+      s << csv_field(ref.path) << "," << csv_field(t.test->path) << "," << csv_field(r.name) << "," << csv_field(r.unit)
+        << "," << csv_num(r.mean) << "," << csv_num(r.max) << ",";
+      if (e.is_flip)
+        s << csv_num(e.pooled.min) << "," << csv_num(e.pooled.weighted_median) << ","
+          << csv_num(e.pooled.weighted_quartile_1) << "," << csv_num(e.pooled.weighted_quartile_3) << ",";
+      else
+        s << ",,,,";
+      s << t.test->scan.nan << "," << t.test->scan.infinite << "," << t.test->scan.negative << "," << ref.scan.nan << ","
+        << ref.scan.infinite << "," << ref.scan.negative << "\n";
+    }
+  return s.str();
+}
+
+// Option checks: the message names the option and what it allows; empty when fine.
+std::string check_positive(double v, const char* option, const char* what) {
+  if (std::isnan(v) || (v > 0.0 && std::isfinite(v))) return {};
+  return std::string(option) + " must be a finite number > 0 (" + what + "), got " + num_str(v);
+}
+
 }  // namespace
 
 int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
-  // ---- inputs (bad input -> 2)
+  auto bad_input = [&](const std::string& msg) {
+    err << "compare: " << msg << "\n";
+    return int(kExitBadInput);
+  };
+
+  // ---- options (bad input -> 2)
+  std::vector<std::string> test_paths;
+  if (!o.test.empty()) test_paths.push_back(o.test);
+  for (const auto& t : o.tests) test_paths.push_back(t);
+  if (test_paths.empty() || o.ref.empty())
+    return bad_input("need a test image and a reference: `compare TEST REF` or `compare --reference REF --test TEST "
+                     "[TEST ...]`");
+  for (const auto& t : test_paths)
+    if (t.empty()) return bad_input("empty test image path");
+
   std::vector<std::string> names = o.metrics.empty() ? metrics::metric_names() : o.metrics;
   const std::vector<std::string> known = metrics::metric_names();
   for (const auto& n : names)
-    if (std::find(known.begin(), known.end(), n) == known.end()) {
-      err << "compare: unknown metric '" << n << "'; allowed: " << join(known) << "\n";
-      return 2;
-    }
-  if (names.empty()) {
-    err << "compare: no metrics registered\n";
-    return 2;
+    if (std::find(known.begin(), known.end(), n) == known.end())
+      return bad_input("unknown metric '" + n + "'; allowed: " + join(known));
+  if (names.empty()) return bad_input("no metrics registered");
+  if (!(o.itp_nits > 0.0) || !std::isfinite(o.itp_nits))
+    return bad_input("--itp-nits must be a positive number of cd/m^2, got " + num_str(o.itp_nits));
+  if (!o.map_path.empty() && test_paths.size() > 1)
+    return bad_input("--map writes one map: give it with one test image (got " + std::to_string(test_paths.size()) +
+                     ")");
+  const bool want_flip = std::find(names.begin(), names.end(), "flip") != names.end();
+
+  FlipSetup flip;
+  flip.hdr = !o.flip_ldr;
+  for (const std::string& m : {check_positive(o.ppd, "--ppd", "pixels per degree"),
+                               check_positive(o.monitor_distance, "--monitor-distance", "metres"),
+                               check_positive(o.monitor_width, "--monitor-width", "metres"),
+                               check_positive(o.monitor_width_pixels, "--monitor-width-pixels", "pixels")})
+    if (!m.empty()) return bad_input(m);
+  const bool viewing = !std::isnan(o.monitor_distance) || !std::isnan(o.monitor_width) ||
+                       !std::isnan(o.monitor_width_pixels);
+  if (!std::isnan(o.ppd) && viewing)
+    return bad_input("--ppd and --monitor-distance/--monitor-width/--monitor-width-pixels both set the pixels per "
+                     "degree: give one or the other");
+  flip.ppd = !std::isnan(o.ppd) ? o.ppd
+                                : metrics::flip_pixels_per_degree(
+                                      std::isnan(o.monitor_distance) ? metrics::kFlipDefaultMonitorDistance : o.monitor_distance,
+                                      std::isnan(o.monitor_width) ? metrics::kFlipDefaultMonitorWidth : o.monitor_width,
+                                      std::isnan(o.monitor_width_pixels) ? metrics::kFlipDefaultMonitorWidthPixels
+                                                                         : o.monitor_width_pixels);
+  if (!o.tone_mapper.empty()) {
+    std::string tm = o.tone_mapper;
+    std::transform(tm.begin(), tm.end(), tm.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const auto v = enum_from_name(metrics::kFlipToneMapperNames, tm);
+    if (!v)
+      return bad_input("--tone-mapper must be one of " + enum_name_list(metrics::kFlipToneMapperNames) +
+                       " (any case), got '" + o.tone_mapper + "'");
+    flip.hdr_options.tone_mapper = *v;
   }
-  if (!(o.itp_nits > 0.0) || !std::isfinite(o.itp_nits)) {
-    err << "compare: --itp-nits must be a positive number of cd/m^2, got " << o.itp_nits << "\n";
-    return 2;
-  }
+  if (std::isinf(o.start_exposure)) return bad_input("--start-exposure must be a finite number of stops");
+  if (std::isinf(o.stop_exposure)) return bad_input("--stop-exposure must be a finite number of stops");
+  if (o.num_exposures < 0)
+    return bad_input("--num-exposures must be an integer >= 1, got " + std::to_string(o.num_exposures));
+  if (!std::isnan(o.start_exposure) && !std::isnan(o.stop_exposure) && o.start_exposure > o.stop_exposure)
+    return bad_input("--start-exposure (" + num_str(o.start_exposure) + ") must not be above --stop-exposure (" +
+                     num_str(o.stop_exposure) + ")");
+  flip.hdr_options.start_exposure = o.start_exposure;
+  flip.hdr_options.stop_exposure = o.stop_exposure;
+  flip.hdr_options.num_exposures = o.num_exposures;
+  const bool hdr_options_given = !o.tone_mapper.empty() || !std::isnan(o.start_exposure) ||
+                                 !std::isnan(o.stop_exposure) || o.num_exposures != 0;
+  if (o.flip_ldr && hdr_options_given)
+    return bad_input("--tone-mapper, --start-exposure, --stop-exposure and --num-exposures are HDR-FLIP settings; "
+                     "they do not go with --flip-ldr");
+  if (!std::isnan(o.threshold) && !(o.threshold >= 0.0 && o.threshold <= 1.0))
+    return bad_input("--threshold must be a number in [0, 1] (a mean FLIP error), got " + num_str(o.threshold));
+  if (!std::isnan(o.threshold) && !want_flip)
+    return bad_input("--threshold tests the mean FLIP error, but --metric leaves out flip; add --metric flip");
+  if (!want_flip && (hdr_options_given || o.flip_ldr || !std::isnan(o.ppd) || viewing))
+    err << "compare: warning: FLIP options given, but --metric leaves out flip; they are ignored\n";
 
   metrics::MetricOptions mo;
   mo.itp_luminance_nits = o.itp_nits;
   mo.display_view = o.display_view;
-  mo.flip_hdr = !o.flip_ldr;
+  mo.flip_hdr = flip.hdr;
+  mo.flip_ppd = flip.ppd;
+
+  // ---- inputs (bad input -> 2): every file is read and checked before anything is computed
   std::unique_ptr<metrics::ColorManager> cm;
-  Image test_xyz, ref_xyz;
+  Input ref;
+  std::vector<Input> tests(test_paths.size());
   try {
     if (!o.display_view.empty()) (void)metrics::parse_display_view(o.display_view);
     cm = std::make_unique<metrics::ColorManager>(o.ocio_config.empty() ? metrics::ColorManager::default_config_path()
                                                                         : o.ocio_config);
     if (!o.space.empty()) (void)cm->canonical_name(o.space);  // unknown --space: error before reading
-    std::string test_tag, ref_tag;
-    const Image test = metrics::read_image(o.test, &test_tag);
-    const Image ref = metrics::read_image(o.ref, &ref_tag);
-    if (!test.same_size(ref)) {
-      err << "compare: image sizes differ: test '" << o.test << "' is " << size_str(test) << ", reference '"
-          << o.ref << "' is " << size_str(ref) << "\n";
-      return 2;
+    auto load = [&](Input& in, const std::string& path, const std::string& what) {
+      std::string tag;
+      in.path = path;
+      const Image img = metrics::read_image(path, &tag);
+      in.scan = metrics::scan_pixels(img, 3);
+      in.bad = bad_pixels(img);
+      in.xyz = metrics::metric_xyz(*cm, img, input_space(*cm, o.space, tag, what, path, err), mo);
+      if (in.scan.nan + in.scan.infinite == 0) in.converted_bad = nonfinite_pixels(in.xyz);
+    };
+    load(ref, o.ref, "reference");
+    for (std::size_t i = 0; i < tests.size(); ++i) {
+      load(tests[i], test_paths[i], "test");
+      if (!tests[i].xyz.same_size(ref.xyz))
+        return bad_input("image sizes differ: test '" + tests[i].path + "' is " + size_str(tests[i].xyz) +
+                         ", reference '" + ref.path + "' is " + size_str(ref.xyz));
     }
-    test_xyz = metrics::metric_xyz(*cm, test, input_space(*cm, o.space, test_tag, "test", o.test, err), mo);
-    ref_xyz = metrics::metric_xyz(*cm, ref, input_space(*cm, o.space, ref_tag, "reference", o.ref, err), mo);
+    if (want_flip && flip.hdr) {
+      // One exposure given, the other from the reference: they must still be in order.
+      const bool start_given = !std::isnan(o.start_exposure), stop_given = !std::isnan(o.stop_exposure);
+      if (start_given != stop_given) {
+        const metrics::HdrFlipExposures a = metrics::hdr_flip_exposures(ref.xyz, flip.hdr_options.tone_mapper);
+        if (start_given && o.start_exposure > a.stop)
+          return bad_input("--start-exposure (" + num_str(o.start_exposure) + ") is above the stop exposure " +
+                           num_str(a.stop) + " computed from the reference '" + ref.path + "'; give --stop-exposure too");
+        if (stop_given && o.stop_exposure < a.start)
+          return bad_input("--stop-exposure (" + num_str(o.stop_exposure) + ") is below the start exposure " +
+                           num_str(a.start) + " computed from the reference '" + ref.path +
+                           "'; give --start-exposure too");
+      }
+      flip.exposures = metrics::resolve_hdr_flip_exposures(ref.xyz, flip.hdr_options);
+    }
   } catch (const std::exception& e) {
-    err << "compare: " << e.what() << "\n";
-    return 2;
+    return bad_input(e.what());
   }
 
-  // ---- metrics
-  std::vector<metrics::MetricResult> results;
+  // ---- bad pixels: reported on err; the metrics of that comparison become NaN (compare.h)
+  auto report = [&](const Input& in, const char* what) {
+    if (!in.scan.clean())
+      err << "compare: " << what << " '" << in.path << "' has " << scan_text(in.scan) << "\n";
+    if (in.converted_bad)
+      err << "compare: " << what << " '" << in.path << "' gives " << in.converted_bad
+          << " non-finite pixels after colour conversion\n";
+  };
+  auto clean = [](const Input& in) { return in.scan.clean() && in.converted_bad == 0; };
+  report(ref, "reference");
+  for (const Input& t : tests) report(t, "test");
+
+  // ---- metrics (HDR-FLIP: the exposures resolved once, from the reference, for every test image)
+  metrics::HdrFlipOptions resolved = flip.hdr_options;
+  resolved.start_exposure = flip.exposures.start;
+  resolved.stop_exposure = flip.exposures.stop;
+  resolved.num_exposures = flip.exposures.count;
+  std::vector<TestResult> results(tests.size());
   try {
-    for (const auto& n : names) results.push_back(metrics::evaluate_metric(n, test_xyz, ref_xyz, mo));
+    for (std::size_t i = 0; i < tests.size(); ++i) {
+      TestResult& tr = results[i];
+      tr.test = &tests[i];
+      tr.clean = clean(tests[i]) && clean(ref);
+      for (const auto& n : names) {
+        Evaluated e;
+        if (n == "flip") {
+          e.is_flip = true;
+          e.result.name = n;
+          e.result.unit = "FLIP";
+          e.result.map = flip.hdr ? metrics::hdr_flip_map(tests[i].xyz, ref.xyz, flip.ppd, resolved)
+                                  : metrics::ldr_flip_map(tests[i].xyz, ref.xyz, flip.ppd);
+          e.pooled = metrics::flip_pooled(e.result.map);
+          e.result.mean = e.pooled.mean;
+          e.result.max = e.pooled.max;
+        } else {
+          e.result = metrics::evaluate_metric(n, tests[i].xyz, ref.xyz, mo);
+        }
+        if (!tr.clean) {
+          e.result.mean = e.result.max = kNaN;
+          e.pooled.mean = e.pooled.weighted_median = e.pooled.weighted_quartile_1 = e.pooled.weighted_quartile_3 =
+              e.pooled.min = e.pooled.max = kNaN;
+        }
+        if (e.is_flip && !std::isnan(o.threshold) && e.result.mean > o.threshold) tr.threshold_exceeded = true;
+        tr.metrics.push_back(std::move(e));
+      }
+      if (!tr.clean)
+        err << "compare: test '" << tests[i].path << "' against '" << ref.path
+            << "': NaN, Inf or negative input pixels, so every metric is NaN\n";
+      if (tr.threshold_exceeded) {
+        const double m = std::find_if(tr.metrics.begin(), tr.metrics.end(), [](const Evaluated& e) {
+                           return e.is_flip;
+                         })->result.mean;
+        err << "compare: mean FLIP error of '" << tests[i].path << "' is " << m << ", above --threshold "
+            << o.threshold << "\n";
+      }
+    }
   } catch (const std::invalid_argument& e) {
-    err << "compare: " << e.what() << "\n";
-    return 2;
+    return bad_input(e.what());
   }
 
+  // ---- output
+  const bool single = results.size() == 1;
   if (o.json) {
     nlohmann::json j;
-    j["metrics"] = nlohmann::json::object();
-    for (const auto& r : results) j["metrics"][r.name] = {{"mean", r.mean}, {"max", r.max}};  // non-finite -> null
+    auto test_json = [&](const TestResult& t, nlohmann::json& into) {
+      into["test"] = t.test->path;
+      into["metrics"] = metrics_json(t);
+      into["input"] = {{"test", scan_json(t.test->scan)}, {"ref", scan_json(ref.scan)}};
+      if (!std::isnan(o.threshold)) into["threshold_exceeded"] = t.threshold_exceeded;
+    };
+    j["reference"] = ref.path;
+    if (want_flip) j["flip"] = flip_settings_json(flip);
+    if (single) {
+      test_json(results.front(), j);
+    } else {
+      j["tests"] = nlohmann::json::array();
+      for (const TestResult& t : results) {
+        nlohmann::json tj;
+        test_json(t, tj);
+        j["tests"].push_back(tj);
+      }
+    }
     out << j.dump(2) << "\n";
   } else {
-    for (const auto& r : results)
-      out << r.name << ": mean " << r.mean << " " << r.unit << ", max " << r.max << " " << r.unit << "\n";
+    for (const TestResult& t : results) {
+      if (!single) out << "test '" << t.test->path << "':\n";
+      print_text(t, ref, flip, single ? "" : "  ", out);
+    }
   }
 
-  // ---- error map of the first metric
-  if (!o.map_path.empty()) {
-    const metrics::MetricResult& first = results.front();
-    if (first.map.empty()) {
-      err << "compare: metric '" << first.name << "' has no per-pixel map; --map needs one (put a per-pixel metric "
-          << "first with --metric)\n";
-      return 2;
+  // ---- files (I/O failure -> 4)
+  try {
+    if (!o.csv_path.empty()) write_text_atomic(o.csv_path, csv_table(results, ref));
+    if (!o.map_path.empty()) {
+      const Evaluated& first = results.front().metrics.front();
+      if (first.result.map.empty()) {
+        err << "compare: metric '" << first.result.name << "' has no per-pixel map; --map needs one (put a per-pixel "
+            << "metric first with --metric)\n";
+        return kExitBadInput;
+      }
+      Image map = first_channel(first.result.map);
+      const Input& t = *results.front().test;
+      for (std::size_t p = 0; p < map.pixel_count(); ++p)
+        if (t.bad[p] || ref.bad[p]) map.data[p] = std::numeric_limits<float>::quiet_NaN();
+      metrics::write_exr_data(o.map_path, map);
     }
-    try {
-      metrics::write_exr_data(o.map_path, first_channel(first.map));
-    } catch (const std::exception& e) {
-      err << "compare: " << e.what() << "\n";
-      return 1;
-    }
+  } catch (const std::exception& e) {
+    err << "compare: " << e.what() << "\n";
+    return kExitIo;
   }
-  return 0;
+
+  for (const TestResult& t : results)
+    if (!t.clean || t.threshold_exceeded) return kExitDefect;
+  return kExitOk;
 }
 
 }  // namespace glintlab
 
 // ---------------------------------------------------------------- the command line
 #include "experiments/cli/commands.h"
-#include "experiments/cli/exit_codes.h"
 
 #include <iostream>
 
@@ -140,20 +467,65 @@ namespace glintlab {
 
 void add_compare_command(CLI::App& app, int& exit_code) {
   auto cmp = std::make_shared<CompareOptions>();
-  CLI::App* c = app.add_subcommand("compare", "compare a test image with a reference image");
-  c->add_option("test", cmp->test, "test image (any format OpenImageIO reads)")->required();
-  c->add_option("ref", cmp->ref, "reference image")->required();
-  c->add_option("--space", cmp->space, "OCIO colour space of both inputs (default: file tag, else scene_linear)");
+  auto reference = std::make_shared<std::string>();
+  CLI::App* c = app.add_subcommand(
+      "compare",
+      "compare test image(s) with a reference image: `compare TEST REF` or `compare -r REF -t TEST [TEST ...]`");
+  c->add_option("test", cmp->test, "test image (any format OpenImageIO reads)");
+  c->add_option("ref", cmp->ref, "reference image");
+  c->add_option("-r,--reference", *reference, "reference image, with --test (instead of TEST REF)");
+  c->add_option("-t,--test", cmp->tests, "test image(s) compared with --reference; repeat or list several");
+  c->add_option("--space", cmp->space, "OCIO colour space of every input (default: file tag, else scene_linear)");
   c->add_option("--metric", cmp->metrics, "metric(s) to report (default: all)");
-  c->add_option("--map", cmp->map_path, "write the first metric's per-pixel map as a 1-channel EXR");
-  c->add_flag("--json", cmp->json, "print {\"metrics\": {name: {\"mean\", \"max\"}}}");
+  c->add_option("--map", cmp->map_path, "write the first metric's per-pixel map as a 1-channel EXR (one test image)");
+  c->add_flag("--json", cmp->json, "print JSON: {\"metrics\": {name: {\"mean\", \"max\", ...}}, \"input\": ...}");
+  c->add_option("--csv", cmp->csv_path, "write a CSV table: one row per test image and metric");
+  c->add_option("--threshold", cmp->threshold, "exit 1 when the mean FLIP error of a test image is above this, in [0, 1]");
   c->add_option("--ocio-config", cmp->ocio_config, "OCIO config (default: $OCIO, else the shipped config)");
   c->add_option("--itp-nits", cmp->itp_nits, "cd/m^2 of Y = 1 for deltaEITP (default 100)");
   c->add_option("--view", cmp->display_view,
                 "measure display-referred, as this OCIO DISPLAY/VIEW shows the images (e.g. sRGB/Standard)");
   c->add_flag("--flip-ldr", cmp->flip_ldr, "LDR-FLIP instead of HDR-FLIP");
-  c->callback([cmp, &exit_code] {
-    exit_code = run_guarded([&] { return run_compare(*cmp, std::cout, std::cerr); }, std::cerr);
+  c->add_option("--ppd,--pixels-per-degree", cmp->ppd,
+                "FLIP: observer's pixels per degree (default 67.0206: 0.7 m from a 0.7 m wide 3840 px monitor)");
+  c->add_option("--monitor-distance", cmp->monitor_distance, "FLIP: distance to the monitor in metres (default 0.7)");
+  c->add_option("--monitor-width", cmp->monitor_width, "FLIP: monitor width in metres (default 0.7)");
+  c->add_option("--monitor-width-pixels", cmp->monitor_width_pixels, "FLIP: monitor width in pixels (default 3840)");
+  c->add_option("--tone-mapper", cmp->tone_mapper, "HDR-FLIP tone mapper: aces (default), hable or reinhard");
+  c->add_option("--start-exposure", cmp->start_exposure, "HDR-FLIP start exposure in stops (default: from the reference)");
+  c->add_option("--stop-exposure", cmp->stop_exposure, "HDR-FLIP stop exposure in stops (default: from the reference)");
+  CLI::Option* num = c->add_option("--num-exposures", cmp->num_exposures,
+                                    "HDR-FLIP number of exposures, >= 1 (default: max(2, ceil(stop - start)))");
+  c->callback([cmp, reference, num, &exit_code] {
+    exit_code = run_guarded(
+        [&] {
+          if (num->count() > 0 && cmp->num_exposures < 1) {  // 0 means automatic in CompareOptions
+            std::cerr << "compare: --num-exposures must be an integer >= 1, got " << cmp->num_exposures << "\n";
+            return int(kExitBadInput);
+          }
+          const bool named = !reference->empty() || !cmp->tests.empty();
+          if (named && (!cmp->test.empty() || !cmp->ref.empty())) {
+            std::cerr << "compare: give `compare TEST REF` or `compare --reference REF --test TEST [TEST ...]`, not "
+                         "both forms\n";
+            return int(kExitBadInput);
+          }
+          if (named && reference->empty()) {
+            std::cerr << "compare: --test needs --reference REF\n";
+            return int(kExitBadInput);
+          }
+          if (named && cmp->tests.empty()) {
+            std::cerr << "compare: --reference needs one or more --test TEST\n";
+            return int(kExitBadInput);
+          }
+          if (!named && cmp->ref.empty()) {
+            std::cerr << "compare: need TEST and REF (or --reference REF --test TEST [TEST ...])\n";
+            return int(kExitBadInput);
+          }
+          CompareOptions o = *cmp;
+          if (named) o.ref = *reference;
+          return run_compare(o, std::cout, std::cerr);
+        },
+        std::cerr);
   });
 }
 

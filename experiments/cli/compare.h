@@ -1,10 +1,68 @@
-// `glintlab compare TEST REF [--space NAME] [--metric NAME ...] [--map OUT.exr] [--json]
-//                  [--view DISPLAY/VIEW] [--flip-ldr] [--itp-nits N]`:
-// colour-managed image comparison in the manner of NVIDIA FLIP's command line (one obvious command,
-// a mean printed per metric, an error map on request). Both images go through OCIO to CIE XYZ D65
-// and every metric of the registry (metrics/metric_registry.h) is evaluated on them.
+// `glintlab compare`: colour-managed image comparison in the manner of NVIDIA FLIP's command line
+// (one obvious command, a mean printed per metric, FLIP's pooled statistics, an error map on request).
+// Every image goes through OCIO to CIE XYZ D65 and every metric of the registry
+// (metrics/metric_registry.h) is evaluated on it.
+//
+//   glintlab compare TEST REF [options]                    one test image against a reference
+//   glintlab compare -r REF -t TEST [TEST ...] [options]   one or more test images against REF
+//                                                          (--reference, --test; --test may repeat)
+//   The two forms do not mix: with --reference/--test there are no positional arguments.
+//
+//   --space NAME         OCIO colour space of every input (default: each file's tag, else scene_linear)
+//   --metric NAME ...    metrics to report (default: all)
+//   --view DISPLAY/VIEW  measure display-referred, as that OCIO view shows the images
+//   --itp-nits N         cd/m^2 of Y = 1 for deltaEITP (default 100)
+//   --json               print JSON instead of text (below)
+//   --csv FILE           also write FILE: one row per test image and metric (below)
+//   --map OUT.exr        the first metric's per-pixel map as a 1-channel float EXR (one test image only)
+//   --threshold X        exit 1 when the mean FLIP error of any test image is above X (X in [0, 1];
+//                        FLIP's -et with its default quantity, the mean); needs the flip metric
+//   FLIP, as NVIDIA FLIP v1.6's tool (its defaults and its option names):
+//   --flip-ldr           LDR-FLIP instead of HDR-FLIP
+//   --ppd X (--pixels-per-degree)  observer's pixels per degree; default from the viewing conditions:
+//   --monitor-distance M, --monitor-width M, --monitor-width-pixels PX  (defaults 0.7 m, 0.7 m,
+//                        3840 px: 67.0206 px/deg; ppd = distance * (pixels / width) * pi / 180)
+//   --tone-mapper aces|hable|reinhard   HDR-FLIP tone mapper (default aces, any case)
+//   --start-exposure C, --stop-exposure C, --num-exposures N   HDR-FLIP exposure range; each one not
+//                        given is computed from the reference as FLIP does (metrics/flip.h)
+//   The HDR options are an error with --flip-ldr; FLIP options without the flip metric are ignored
+//   with a warning.
+//
+// Output. Text: one line per metric, "NAME: mean X UNIT, max Y UNIT"; for flip two more lines, FLIP's
+// pooled values (weighted median, 1st and 3rd weighted quartile, min, max: metrics/flip_pooling.h)
+// and its settings (LDR/HDR, px/deg, tone mapper, exposures). With several test images each block
+// starts with "test 'FILE':" and its lines are indented.
+// JSON (--json): with one test image
+//   {"test": T, "reference": R, "metrics": {"<name>": {"mean": x, "max": y}, ...,
+//    "flip": {"mean", "max", "min", "weighted_median", "weighted_quartile_1", "weighted_quartile_3"}},
+//    "input": {"test": COUNTS, "ref": COUNTS}, "flip": SETTINGS, "threshold_exceeded": bool}
+//   with COUNTS = {"pixels": n, "nan": n, "inf": n, "negative": n}, SETTINGS = {"mode": "hdr"|"ldr",
+//   "ppd", "tone_mapper", "start_exposure", "stop_exposure", "num_exposures"} (the last four for HDR;
+//   "flip" only when the flip metric ran, "threshold_exceeded" only with --threshold). With several
+//   test images: {"reference": R, "flip": SETTINGS, "tests": [{"test", "metrics", "input",
+//   "threshold_exceeded"}, ...]}. A value that is not finite is null.
+// CSV (--csv, written whole, atomically): header
+//   reference,test,metric,unit,mean,max,min,weighted_median,weighted_quartile_1,weighted_quartile_3,
+//   test_nan,test_inf,test_negative,ref_nan,ref_inf,ref_negative
+//   the pooled columns are filled for flip only; a value that is not finite is an empty field.
+//
+// Bad pixels (the rule): every input is scanned (its colour channels as decoded from the file, before
+// any colour conversion) for NaN, +-Inf and negative values (metrics/pixel_scan.h). The counts are
+// always reported ("input" in JSON, the CSV columns; in text a line "input test|ref 'FILE': ..."
+// when any count is non-zero, and a message on stderr). When the test image or the reference has any
+// NaN, Inf or negative pixel, every metric of that comparison is NaN: mean, max and FLIP's pooled
+// values (null in JSON, "nan" in text, empty in CSV); nothing is averaged over the remaining pixels,
+// since a spatial metric (FLIP) spreads a bad pixel over its neighbours. A --map is still written,
+// with NaN at every bad pixel. The same holds when the colour conversion turns a finite input into a
+// non-finite value. The exit code is then 1.
+//
+// Exit codes (experiments/cli/exit_codes.h): 0 ok; 1 any input pixel NaN, Inf or negative, or
+// --threshold exceeded (the comparison is still printed in full); 2 bad input (unreadable image, size
+// mismatch, unknown colour space or metric, bad option value: the message names it and what is
+// allowed); 4 --map or --csv could not be written.
 #pragma once
 
+#include <cmath>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -12,21 +70,33 @@
 namespace glintlab {
 
 struct CompareOptions {
-  std::string test, ref;              // image files (anything OpenImageIO reads)
-  std::string space;                  // colour space of both; empty = each file's oiio:ColorSpace tag,
-                                      // else scene_linear
+  std::string test;                   // test image (the positional form); may be empty when `tests` is set
+  std::vector<std::string> tests;     // more test images, compared after `test`, each against `ref`
+  std::string ref;                    // reference image (anything OpenImageIO reads)
+  std::string space;                  // colour space of every input; empty = each file's oiio:ColorSpace
+                                      // tag, else scene_linear
   std::vector<std::string> metrics;   // empty = all registered metrics
   std::string map_path;               // write the first metric's per-pixel map here (1-channel float EXR)
-  bool json = false;                  // print {"metrics": {"<name>": {"mean": x, "max": y}}}
+  bool json = false;                  // print JSON (see above)
+  std::string csv_path;               // also write the CSV table here
   std::string ocio_config;            // empty = ColorManager::default_config_path()
   double itp_nits = 100;              // luminance of scene value 1.0 for ΔE_ITP, cd/m^2
   std::string display_view;           // "" = scene-referred; "DISPLAY/VIEW" = display-referred metrics
+  double threshold = NAN;             // NaN = off; else exit 1 when a mean FLIP error is above it
+
+  // FLIP (NaN / empty / 0 = FLIP's default).
   bool flip_ldr = false;              // LDR-FLIP instead of HDR-FLIP
+  double ppd = NAN;                   // pixels per degree; NaN = from the viewing conditions
+  double monitor_distance = NAN;      // m, default 0.7
+  double monitor_width = NAN;         // m, default 0.7
+  double monitor_width_pixels = NAN;  // px, default 3840
+  std::string tone_mapper;            // "aces" (default), "hable", "reinhard"; any case
+  double start_exposure = NAN;        // NaN = from the reference
+  double stop_exposure = NAN;         // NaN = from the reference
+  int num_exposures = 0;              // 0 = max(2, ceil(stop - start)); >= 1 otherwise
 };
 
-// Runs the comparison; results on `out`, diagnostics on `err`.
-// Returns 0 on success, 2 on bad input (unreadable file, size mismatch, unknown space or metric,
-// bad option) and 1 when writing the map fails.
+// Runs the comparison; results on `out`, diagnostics on `err`. Returns the exit code (above).
 int run_compare(const CompareOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace glintlab

@@ -19,8 +19,10 @@ struct RunOptions {
   int max_frames = 0;         // > 0: render only the first n frames
 };
 
-// Returns the process exit code: 0 ok, 1 a frame had NaN/Inf/negative pixels
-// (the run still completes and reports them), 2 bad input.
+// Returns the process exit code (experiments/cli/exit_codes.h): 0 ok, 1 a
+// frame had NaN/Inf/negative pixels or the validation layer reported something
+// (the run still completes and reports them), 2 bad input. Device and I/O
+// failures throw (core::VulkanError, IoError).
 int run_experiment(const RunOptions& options, std::ostream& log);
 
 }  // namespace glintlab

@@ -2,6 +2,7 @@
 
 #include "core/util/json_check.h"
 #include "metrics/color/measurement_space.h"
+#include "metrics/flip.h"
 #include "metrics/metric_registry.h"
 
 #include <algorithm>
@@ -35,6 +36,28 @@ core::CameraPath load_path(JsonReader& r, const std::string& key, const std::str
   for (const auto& b : builtins) allowed += (allowed.empty() ? "" : ", ") + b;
   r.fail(key, "\"" + s + "\" is neither a built-in path (" + allowed + ") nor a file relative to " + file +
                   " or " + GLINTLAB_EXPERIMENT_DIR);
+}
+
+template <typename E, size_t N>
+E get_named(JsonReader& r, const std::string& key, const EnumTable<E, N>& table, E def) {
+  return *enum_from_name(table, r.get_enum(key, enum_name(table, def), enum_names(table)));
+}
+
+core::TaaSettings parse_taa(JsonReader& r) {
+  core::TaaSettings t;
+  t.jitter = get_named(r, "jitter", core::kJitterNames, t.jitter);
+  t.alpha = r.get_number("alpha", t.alpha, 1e-4, 1.0);
+  t.clamp = get_named(r, "clamp", core::kTaaClampNames, t.clamp);
+  t.gamma = r.get_number("gamma", t.gamma, 0.0, 100.0);
+  t.space = get_named(r, "space", core::kTaaSpaceNames, t.space);
+  t.history_filter = get_named(r, "history_filter", core::kTaaHistoryFilterNames, t.history_filter);
+  t.velocity = get_named(r, "velocity", core::kTaaVelocityNames, t.velocity);
+  t.feedback = get_named(r, "feedback", core::kTaaFeedbackNames, t.feedback);
+  t.hdr = get_named(r, "hdr", core::kTaaHdrNames, t.hdr);
+  t.anti_flicker = r.get_bool("anti_flicker", t.anti_flicker);
+  t.disocclusion_tolerance = r.get_number("disocclusion_tolerance", t.disocclusion_tolerance, 1e-4, 10.0);
+  r.finish();
+  return t;
 }
 
 core::SandParams parse_material(const nlohmann::json& j, const std::string& file, const std::string& path) {
@@ -81,10 +104,17 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     if (v.name.empty() || v.name.find_first_of("/\\ ,\"") != std::string::npos)
       vr.fail("name", "must be non-empty without '/', '\\\\', spaces, commas or quotes (it names files and CSV rows)");
     if (!names.insert(v.name).second) vr.fail("name", "\"" + v.name + "\" is used by two variants");
-    v.aa = vr.get_enum("aa", "none", {"none", "ssaa"});
-    v.ssaa_grid = vr.get_int("ssaa_grid", v.aa == "ssaa" ? 2 : 1, 1, 16);
-    if (v.aa != "ssaa" && vr.has("ssaa_grid") && v.ssaa_grid != 1)
+    v.aa = get_named(vr, "aa", kAaNames, AaMethod::None);
+    v.ssaa_grid = vr.get_int("ssaa_grid", v.aa == AaMethod::Ssaa ? 2 : 1, 1, 16);
+    if (v.aa != AaMethod::Ssaa && vr.has("ssaa_grid") && v.ssaa_grid != 1)
       vr.fail("ssaa_grid", "only applies to \"aa\": \"ssaa\"");
+    if (vr.has("taa")) {
+      if (v.aa != AaMethod::Taa) vr.fail("taa", "only applies to \"aa\": \"taa\"");
+      v.taa_json = vr.raw("taa");
+      if (!v.taa_json.is_object()) vr.fail("taa", "expected an object of TAA options");
+      JsonReader tr(v.taa_json, file, vr.key_path("taa"));
+      v.taa = parse_taa(tr);
+    }
     v.debug = vr.get_enum("debug", "final", core::SandParams::debug_output_names());
     v.material_json = s.material_json;
     if (vr.has("material")) {
@@ -131,7 +161,7 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     }
     s.metric_options.itp_luminance_nits = mo->get_number("itp_nits", 100.0, 1e-3, 1e5);
     s.metric_options.flip_hdr = mo->get_enum("flip", "hdr", {"hdr", "ldr"}) == "hdr";
-    s.metric_options.flip_ppd = mo->get_number("flip_ppd", 67.0, 1.0, 1000.0);
+    s.metric_options.flip_ppd = mo->get_number("flip_ppd", metrics::kFlipDefaultPpd, 1.0, 1000.0);
     mo->finish();
   }
 

@@ -9,12 +9,16 @@
 //   "scene": { "mesh": {MeshSpec}, "sky": {SkySpec} },
 //   "camera_path": "orbit-close" | "paths/x.json" | {inline CameraPath},
 //   "material": {"preset": "thesis-default", <SandParams overrides>},
-//   "variants": [ {"name": "no-aa", "aa": "none" | "ssaa", "ssaa_grid": 2,
+//   "variants": [ {"name": "no-aa", "aa": "none" | "ssaa" | "taa", "ssaa_grid": 2,
+//                  "taa": {"jitter": "halton16", "alpha": 0.1, "clamp": "variance", "gamma": 1.0,
+//                          "space": "ycocg", "history_filter": "catmull_rom", "velocity": "longest",
+//                          "feedback": "karis", "hdr": "none", "anti_flicker": false,
+//                          "disocclusion_tolerance": 0.05},       // taa only; defaults = Falcor
 //                  "debug": "final" | <debug output>, "material": {<overrides>}} ],
 //   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
 //   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],
 //   "metric_options": {"view": "" | "sRGB/Standard",  // "" = scene-referred per-pixel metrics
-//                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67},
+//                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67.0206},
 //   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "Standard",
 //              "contact_sheet": false, "contact_sheet_columns": 8}
 // }
@@ -23,6 +27,8 @@
 #include "core/scene/camera_path.h"
 #include "core/scene/environment.h"
 #include "core/scene/mesh.h"
+#include "core/render/taa_settings.h"
+#include "core/util/named_enum.h"
 #include "core/material/sand_material.h"
 #include "metrics/metric_registry.h"
 
@@ -33,15 +39,25 @@
 
 namespace glintlab {
 
+// Anti-aliasing methods: one name table (the JSON values of "aa").
+enum class AaMethod { None, Ssaa, Taa };
+inline constexpr EnumTable<AaMethod, 3> kAaNames{{
+    {AaMethod::None, "none"},  // one sample at each pixel centre
+    {AaMethod::Ssaa, "ssaa"},  // ssaa_grid^2 stratified samples, one fixed pattern
+    {AaMethod::Taa, "taa"},    // one jittered sample + the TAA resolve (core/render/taa_settings.h)
+}};
+
 struct VariantSpec {
   std::string name;
-  std::string aa = "none";  // "none" | "ssaa"
+  AaMethod aa = AaMethod::None;
   int ssaa_grid = 1;        // ssaa: grid x grid stratified samples per pixel
+  core::TaaSettings taa;    // taa: every choice of the resolve ("taa" object)
   std::string debug = "final";
   core::SandParams material;  // experiment material + this variant's overrides
   nlohmann::json material_json;  // the merged object (for hashing and the summary)
+  nlohmann::json taa_json;       // the "taa" object as given (for the summary)
 
-  int samples_per_pixel() const { return aa == "ssaa" ? ssaa_grid * ssaa_grid : 1; }
+  int samples_per_pixel() const { return aa == AaMethod::Ssaa ? ssaa_grid * ssaa_grid : 1; }
 };
 
 struct ReferenceSpec {

@@ -52,13 +52,16 @@ core::SandParams to_working_space(core::SandParams p, const std::string& working
 }
 
 core::FrameUniforms frame_uniforms(const core::FrameCamera& cam, const core::Environment& env, int width, int height,
-                                   size_t env_mip_levels) {
+                                   size_t env_mip_levels, const core::ObjectMotion& motion) {
   core::FrameUniforms f;
-  f.model = glm::mat4(1.0f);
+  f.model = motion.model_at(cam.time);
   f.normal_matrix = glm::inverseTranspose(f.model);
+  f.prev_model = motion.model_at(cam.prev_time);
+  f.view_proj = cam.view_proj_unjittered;
   f.prev_view_proj = cam.prev_view_proj_unjittered;
   f.inv_view_proj = glm::inverse(cam.view_proj_unjittered);
   f.camera_pos = glm::vec4(cam.position, float(cam.time));
+  f.prev_camera_pos = glm::vec4(cam.prev_position, 0.0f);
   float radius = glm::radians(env.sun.angular_diameter_deg) * 0.5f;
   f.sun_dir = glm::vec4(env.sun.direction, radius);
   f.sun_L = glm::vec4(env.sun.color * env.sun.intensity, 0.0f);
@@ -72,7 +75,10 @@ core::SandFeatures distance_range(const ExperimentSpec& spec, const core::Mesh& 
   core::SandFeatures f;
   double lo = INFINITY, hi = 0;
   for (int k = 0; k < spec.frames; ++k) {
-    glm::dvec3 e = glm::dvec3(spec.path.at(spec.path.frame_time(k)).position);
+    const double t = spec.path.frame_time(k);
+    glm::dvec3 e = glm::dvec3(spec.path.at(t).position);
+    // The eye in the mesh's own frame (a moving mesh moves its bounds).
+    if (spec.mesh.motion.moves()) e = glm::dvec3(glm::inverse(spec.mesh.motion.model_at(t)) * glm::vec4(glm::vec3(e), 1.0f));
     glm::dvec3 bmin(mesh.bounds_min), bmax(mesh.bounds_max);
     glm::dvec3 nearest = glm::clamp(e, bmin, bmax);
     lo = std::min(lo, glm::length(e - nearest));
@@ -84,6 +90,20 @@ core::SandFeatures distance_range(const ExperimentSpec& spec, const core::Mesh& 
   f.min_distance = lo;
   f.max_distance = hi;
   return f;
+}
+
+SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
+  SceneData d;
+  d.mesh = core::build_mesh(spec.mesh);
+  d.env = prepare_environment(spec, cm);
+  d.env_texture = environment_texture(d.env);
+  d.range = distance_range(spec, d.mesh);
+  return d;
+}
+
+core::FrameUniforms frame_uniforms(const ExperimentSpec& spec, const SceneData& scene, int k) {
+  return frame_uniforms(spec.path.frame(k, spec.width, spec.height), scene.env, spec.width, spec.height,
+                        scene.env_texture.mips_rgba.size(), spec.mesh.motion);
 }
 
 }  // namespace glintlab

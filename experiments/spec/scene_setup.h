@@ -5,7 +5,10 @@
 #pragma once
 
 #include "core/scene/environment.h"
-#include "core/render/surface_pass.h"
+#include "core/scene/mesh.h"
+#include "core/render/frame_uniforms.h"
+#include "core/render/scene_gpu.h"
+#include "core/scene/object_motion.h"
 #include "core/material/sand_material.h"
 #include "experiments/spec/experiment_spec.h"
 #include "metrics/color/color_manager.h"
@@ -20,8 +23,22 @@ core::EnvironmentTexture environment_texture(const core::Environment& env);
 core::SandParams to_working_space(core::SandParams p, const std::string& working_space,
                                   const metrics::ColorManager& cm);
 
+// Frame uniforms of camera frame `cam`; `motion` moves the mesh (model and
+// previous model matrices from cam.time and cam.prev_time).
 core::FrameUniforms frame_uniforms(const core::FrameCamera& cam, const core::Environment& env, int width, int height,
-                                   size_t env_mip_levels);
+                                   size_t env_mip_levels, const core::ObjectMotion& motion = {});
+
+// Everything about the scene that is built once per run, CPU side.
+struct SceneData {
+  core::Mesh mesh;
+  core::Environment env;
+  core::EnvironmentTexture env_texture;
+  core::SandFeatures range;  // camera distances the run reaches (pruning)
+};
+SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& cm);
+
+// Frame uniforms of frame `k` of the spec's path (unjittered camera, mesh motion).
+core::FrameUniforms frame_uniforms(const ExperimentSpec& spec, const SceneData& scene, int k);
 
 // Bounds of the distance from the eye to any point of the mesh over the run's
 // frames (conservative: from the mesh's bounding box).

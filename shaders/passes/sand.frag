@@ -1,7 +1,8 @@
 #version 450
 // The sand material as a surface pass: gathers the macro surface, the sun and
 // the sky's hemisphere term (Kajs eq. 4.2, from SH irradiance) and calls
-// sand_shade(). Writes the weighted sample for accumulation; alpha = coverage.
+// sand_shade(). Writes the weighted sample for accumulation; alpha = coverage;
+// with SURFACE_MOTION, also the motion vector of the surface point.
 #include "common/frame.glsl"
 #include "sand/sand_params.glsl"
 layout(set = 0, binding = 1, std140) uniform MaterialUBO { SandParams sand_params; };
@@ -9,12 +10,13 @@ layout(set = 0, binding = 2) uniform sampler2D env_map;
 #include "common/environment.glsl"
 #include "sand/sand.glsl"
 
-layout(location = 0) in vec3 v_x_obj;
-layout(location = 1) in vec3 v_x;
-layout(location = 2) in vec3 v_n;
-layout(location = 3) in vec4 v_t;
-layout(location = 4) in vec2 v_uv;
+#include "common/surface_interface.glsl"
+#include "common/motion.glsl"
+
 layout(location = 0) out vec4 out_color;
+#if SURFACE_MOTION
+layout(location = 1) out vec4 out_motion;  // common/motion.glsl
+#endif
 
 void main() {
   vec3 to_eye = frame_camera_pos.xyz - v_x;
@@ -33,4 +35,7 @@ void main() {
   vec3 L = sand_shade(sand_params, s, l);
   float w = sample_jitter_weight.z;
   out_color = vec4(L * w, w);
+#if SURFACE_MOTION
+  out_motion = surface_motion(v_x, v_prev_x);
+#endif
 }

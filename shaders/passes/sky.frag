@@ -1,12 +1,16 @@
 #version 450
 // Background: environment radiance along the (unjittered) view ray, drawn only
-// where no surface wrote depth.
+// where no surface wrote depth; with SURFACE_MOTION also its motion vector.
 #include "common/frame.glsl"
 layout(set = 0, binding = 2) uniform sampler2D env_map;
 #include "common/environment.glsl"
+#include "common/motion.glsl"
 
 layout(location = 0) in vec2 v_ndc;
 layout(location = 0) out vec4 out_color;
+#if SURFACE_MOTION
+layout(location = 1) out vec4 out_motion;  // camera rotation only (common/motion.glsl)
+#endif
 
 void main() {
   vec4 far_point = frame_inv_view_proj * vec4(v_ndc, 1.0, 1.0);
@@ -17,4 +21,7 @@ void main() {
   vec3 L = max(env_radiance(dir, 0.0), vec3(0.0));
   float w = sample_jitter_weight.z;
   out_color = vec4(L * w, 0.0);
+#if SURFACE_MOTION
+  out_motion = sky_motion(dir);
+#endif
 }

@@ -1,6 +1,7 @@
 #version 450
 // Transforms the mesh for any surface pass; hands object and world positions,
-// the macro normal and tangent to the fragment stage.
+// the macro normal and tangent, and the previous frame's position (motion
+// vectors) to the fragment stage (common/surface_interface.glsl).
 #include "common/frame.glsl"
 
 layout(location = 0) in vec3 in_position;
@@ -13,6 +14,7 @@ layout(location = 1) out vec3 v_x;
 layout(location = 2) out vec3 v_n;
 layout(location = 3) out vec4 v_t;
 layout(location = 4) out vec2 v_uv;
+layout(location = 5) out vec3 v_prev_x;  // same point, previous frame (motion vectors)
 
 void main() {
   // The depth pre-pass and the shading pass run this shader in two pipelines
@@ -27,5 +29,6 @@ void main() {
   v_n = mat3(frame_normal_matrix) * in_normal;
   v_t = vec4(mat3(frame_model) * in_tangent.xyz, in_tangent.w);
   v_uv = in_uv;
+  v_prev_x = (frame_prev_model * vec4(in_position, 1.0)).xyz;
   gl_Position = clip;
 }

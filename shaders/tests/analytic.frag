@@ -5,11 +5,7 @@
 // f = exp(-0.1 |x|) * (1 + 0.5 sin(3 x.x) cos(2 x.z)); alpha = weight.
 #include "common/frame.glsl"
 
-layout(location = 0) in vec3 v_x_obj;
-layout(location = 1) in vec3 v_x;
-layout(location = 2) in vec3 v_n;
-layout(location = 3) in vec4 v_t;
-layout(location = 4) in vec2 v_uv;
+#include "common/surface_interface.glsl"
 layout(location = 0) out vec4 out_color;
 
 void main() {

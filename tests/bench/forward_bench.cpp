@@ -2,9 +2,11 @@
 // the sand material at 640x360 and 1280x720, for the full material and for
 // the variants with features compiled out, measured in one run (so ratios
 // between them are meaningful). Median of N timed frames after warm-up; GPU
-// timestamps; variants timed round-robin. Usage: glintlab_bench [--device NAME] [--frames N] [--width W --height H]
+// timestamps; variants timed round-robin.
+// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H]
 #include "core/scene/camera_path.h"
 #include "core/scene/mesh.h"
+#include "core/material/program.h"
 #include "core/render/surface_pass.h"
 #include "core/material/sand_material.h"
 #include "core/vk/vk_context.h"
@@ -96,19 +98,17 @@ int main(int argc, char** argv) {
     std::printf("  %-34s %10s %10s %8s  %s\n", "variant", "ms/frame", "Mpix/s", "ratio", "defines");
     // All variants are built first and timed round-robin, so drift in the
     // machine's load spreads over every variant instead of biasing one.
-    std::vector<std::unique_ptr<core::SurfacePass>> passes;
+    std::vector<std::unique_ptr<core::SurfaceRenderer>> passes;
     std::vector<std::string> defines;
     for (const Case& c : cases) {
-      core::SurfaceShader sh;
-      sh.fragment = "passes/sand.frag";
-      sh.defines = core::shader_defines(c.params, c.needs);
-      core::SandParamsGPU gpu = c.params.pack();
-      sh.material.resize(sizeof gpu);
-      std::memcpy(sh.material.data(), &gpu, sizeof gpu);
+      // The same factory as the runner's (core/material/program.h).
+      core::SurfacePassOptions o;
+      o.program = core::sand_program(c.params, c.needs, core::ProgramRole::Variant);
+      o.sky = false;
       std::string defs;
-      for (const auto& d : sh.defines) defs += (defs.empty() ? "" : " ") + d;
+      for (const auto& d : o.program.defines) defs += (defs.empty() ? "" : " ") + d;
       defines.push_back(defs);
-      passes.push_back(std::make_unique<core::SurfacePass>(ctx, scene, w, h, sh, /*draw_sky=*/false));
+      passes.push_back(std::make_unique<core::SurfaceRenderer>(ctx, scene, w, h, o));
       for (int i = 0; i < 2; ++i) passes.back()->render(fu, one);  // warm-up (JIT, caches)
     }
     std::vector<std::vector<double>> ms(cases.size());

@@ -4,6 +4,7 @@
 // 32x32-sample reference falls like 1/sqrt(N), and the stratified estimator
 // used for references is at least as good.
 #include "core/scene/mesh.h"
+#include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
@@ -50,14 +51,10 @@ TEST(ReferenceConvergence, ErrorFallsLikeInverseSqrtSpp) {
   core::SandParams params = to_working_space(spec.variants[0].material, spec.working_space, cm);
   core::SandFeatures needs = distance_range(spec, mesh);
   needs.debug_output = "diffuse";
-  core::SurfaceShader sh;
-  sh.fragment = "passes/sand.frag";
-  sh.defines = core::shader_defines(params, needs);
-  core::SandParamsGPU gpu = params.pack();
-  sh.material.resize(sizeof gpu);
-  std::memcpy(sh.material.data(), &gpu, sizeof gpu);
   const int w = spec.width, h = spec.height;
-  core::SurfacePass pass(ctx, scene, w, h, sh);
+  core::SurfacePassOptions opt;
+  opt.program = core::sand_program(params, needs, core::ProgramRole::Variant);
+  core::SurfaceRenderer pass(ctx, scene, w, h, opt);
   core::FrameCamera cam0 = spec.path.frame(0, w, h);
   core::FrameUniforms fu = frame_uniforms(cam0, env, w, h, tex.mips_rgba.size());
 
@@ -66,7 +63,7 @@ TEST(ReferenceConvergence, ErrorFallsLikeInverseSqrtSpp) {
     for (size_t i = 0; i < offsets.size(); ++i)
       s.push_back({spec.path.frame(0, w, h, offsets[i]).view_proj,
                    {offsets[i].x, offsets[i].y, 1.0f / float(offsets.size()), float(i)}});
-    return pass.render(fu, s).color;
+    return pass.render(fu, s).images.at("color");
   };
   Image ref = render(core::stratified_offsets(32, 99u));
 

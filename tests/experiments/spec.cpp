@@ -83,7 +83,7 @@ TEST(ExperimentSpec, MinimalSpecGetsDocumentedDefaults) {
   EXPECT_EQ(s.output.every, 1);
   ASSERT_EQ(s.variants.size(), 1u);
   const auto& v = s.variants[0];
-  EXPECT_EQ(v.aa, "none");
+  EXPECT_EQ(v.aa, glintlab::AaMethod::None);
   EXPECT_EQ(v.samples_per_pixel(), 1);
   EXPECT_EQ(v.debug, "final");
   // No material: the thesis-default preset (Appendix A values).

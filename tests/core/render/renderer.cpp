@@ -3,6 +3,7 @@
 // accumulation.
 #include "core/scene/camera.h"
 #include "core/scene/mesh.h"
+#include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
 #include "tests/support/vk_test_util.h"
 
@@ -36,12 +37,23 @@ core::Mesh big_plane() {
 
 core::FrameUniforms uniforms_for(const glm::mat4& view_proj, int w, int h, glm::vec3 eye) {
   core::FrameUniforms f;
+  f.view_proj = view_proj;
   f.inv_view_proj = glm::inverse(view_proj);
   f.prev_view_proj = view_proj;
   f.camera_pos = glm::vec4(eye, 0.0f);
   f.resolution = glm::vec4(float(w), float(h), 1.0f / float(w), 1.0f / float(h));
   return f;
 }
+
+// A surface pass with a test shader and no sky.
+core::SurfacePassOptions surface_options(const std::string& fragment) {
+  core::SurfacePassOptions o;
+  o.program.fragment = fragment;
+  o.sky = false;
+  return o;
+}
+
+const Image& color(const core::FrameResult& r) { return r.images.at("color"); }
 
 }  // namespace
 
@@ -51,7 +63,7 @@ TEST(Renderer, ReadbackOfOddSizeIsExact) {
   const int w = 97, h = 61;
   core::Mesh mesh = big_plane();
   core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  core::SurfacePass pass(ctx, scene, w, h, {"tests/fragcoord.frag", {}, {}}, /*draw_sky=*/false);
+  core::SurfaceRenderer pass(ctx, scene, w, h, surface_options("tests/fragcoord.frag"));
   core::CameraState cam;
   cam.position = {0.0f, 10.0f, 0.001f};
   cam.target = {0.0f, 0.0f, 0.0f};
@@ -59,11 +71,11 @@ TEST(Renderer, ReadbackOfOddSizeIsExact) {
   glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
   core::SamplePush s{vp, {0, 0, 1, 0}};
   auto out = pass.render(uniforms_for(vp, w, h, cam.position), {s});
-  ASSERT_EQ(out.color.width, w);
-  ASSERT_EQ(out.color.height, h);
+  ASSERT_EQ(color(out).width, w);
+  ASSERT_EQ(color(out).height, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const float* p = out.color.px(x, y);
+      const float* p = color(out).px(x, y);
       ASSERT_EQ(p[0], float(x)) << x << "," << y;
       ASSERT_EQ(p[1], float(y)) << x << "," << y;
       ASSERT_EQ(p[2], float(y * 1000 + x)) << x << "," << y;
@@ -79,7 +91,7 @@ TEST(Renderer, AnalyticShaderMatchesFp64PixelByPixel) {
   const int w = 160, h = 90;
   core::Mesh mesh = big_plane();
   core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  core::SurfacePass pass(ctx, scene, w, h, {"tests/analytic.frag", {}, {}}, /*draw_sky=*/false);
+  core::SurfaceRenderer pass(ctx, scene, w, h, surface_options("tests/analytic.frag"));
   core::CameraState cam;
   cam.position = {0.3f, 2.0f, 4.5f};
   cam.target = {0.0f, 0.0f, 0.0f};
@@ -97,7 +109,7 @@ TEST(Renderer, AnalyticShaderMatchesFp64PixelByPixel) {
       glm::dvec4 a = inv * glm::dvec4(nx, ny, 0.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
       glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
       glm::dvec3 d = p1 - p0;
-      const float* px = out.color.px(x, y);
+      const float* px = color(out).px(x, y);
       double t = d.y < 0 ? -p0.y / d.y : -1.0;
       if (t < 0 || t > 1) {  // misses the plane: nothing drawn
         EXPECT_EQ(px[3], 0.0f) << x << "," << y;
@@ -126,7 +138,7 @@ TEST(Renderer, JitteredSamplesAverageWithWeights) {
   const int w = 33, h = 17;
   core::Mesh mesh = big_plane();
   core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  core::SurfacePass pass(ctx, scene, w, h, {"tests/fragcoord.frag", {}, {}}, false);
+  core::SurfaceRenderer pass(ctx, scene, w, h, surface_options("tests/fragcoord.frag"));
   core::CameraState cam;
   cam.position = {0.0f, 10.0f, 0.001f};
   cam.fov_y_deg = 90.0f;
@@ -140,15 +152,15 @@ TEST(Renderer, JitteredSamplesAverageWithWeights) {
     samples.push_back({vp, {offsets[i].x, offsets[i].y, 1.0f / 16.0f, float(i)}});
   }
   glm::mat4 vp0 = core::projection(cam, w, h) * core::view_matrix(cam);
-  auto out = pass.render(uniforms_for(vp0, w, h, cam.position), samples, "reference");
+  auto out = pass.render(uniforms_for(vp0, w, h, cam.position), samples);
   // Each sample writes the index of the pixel it lands in, which is the pixel
   // itself for |jitter| < 0.5: the weighted mean is exact, and coverage is 1.
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      EXPECT_NEAR(out.color.at(x, y, 0), float(x), 1e-5f);
-      EXPECT_NEAR(out.color.at(x, y, 3), 1.0f, 1e-6f);
+      EXPECT_NEAR(color(out).at(x, y, 0), float(x), 1e-5f);
+      EXPECT_NEAR(color(out).at(x, y, 3), 1.0f, 1e-6f);
     }
-  EXPECT_EQ(out.timings[0].pass, "reference");
+  EXPECT_EQ(out.timings[0].pass, "surface");
 }
 
 TEST(Renderer, OnlyTheNearestOfOverlappingSurfacesIsAccumulated) {
@@ -167,7 +179,7 @@ TEST(Renderer, OnlyTheNearestOfOverlappingSurfacesIsAccumulated) {
   spec.layer_spacing = 0.3f;  // inner shell radius 0.7
   core::Mesh mesh = core::build_mesh(spec);
   core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  core::SurfacePass pass(ctx, scene, w, h, {"tests/analytic.frag", {}, {}}, /*draw_sky=*/false);
+  core::SurfaceRenderer pass(ctx, scene, w, h, surface_options("tests/analytic.frag"));
   core::CameraState cam;
   cam.position = {0.4f, 0.9f, 3.2f};
   cam.target = {0.0f, 0.0f, 0.0f};
@@ -184,7 +196,7 @@ TEST(Renderer, OnlyTheNearestOfOverlappingSurfacesIsAccumulated) {
     int interior = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const float* px = out.color.px(x, y);
+        const float* px = color(out).px(x, y);
         ASSERT_LE(px[3], 1.0f + 1e-5f) << "more than one fragment accumulated at " << x << "," << y;
         if (n != 1) continue;
         double nx = (x + 0.5) / w * 2.0 - 1.0, ny = (y + 0.5) / h * 2.0 - 1.0;

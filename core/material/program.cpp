@@ -1,0 +1,49 @@
+#include "core/material/program.h"
+
+#include "core/util/content_hash.h"
+#include "core/vk/shader_compiler.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace glintlab::core {
+
+std::string MaterialProgram::cache_key() const {
+  ContentHash h;
+  h.add(std::string_view("material-program-v1"))
+      .add(default_shader_compiler().source_hash(fragment, ShaderStage::Fragment, defines));
+  for (const auto& d : defines) h.add(std::string_view(d));
+  h.add(block.data(), block.size());
+  return h.hex();
+}
+
+MaterialProgram sand_program(const SandParams& params, const SandFeatures& needs, ProgramRole role) {
+  MaterialProgram p;
+  p.fragment = "passes/sand.frag";
+  SandFeatures f = needs;
+  if (role == ProgramRole::Reference) f.min_distance = f.max_distance = 0.0;  // the close field is always reached
+  p.defines = shader_defines(params, f);
+  if (role == ProgramRole::Reference) {
+    // DESIGN "Ground truth": the far model and the sigmoid transition are
+    // approximations of the footprint average, so the truth has neither.
+    p.defines.erase(std::remove_if(p.defines.begin(), p.defines.end(),
+                                   [](const std::string& d) {
+                                     return d.rfind("SAND_FAR=", 0) == 0 || d.rfind("SAND_CLOSE=", 0) == 0;
+                                   }),
+                    p.defines.end());
+    p.defines.push_back("SAND_FAR=0");
+    p.defines.push_back("SAND_CLOSE=1");
+  }
+  SandParamsGPU gpu = params.pack();
+  p.block.resize(sizeof gpu);
+  std::memcpy(p.block.data(), &gpu, sizeof gpu);
+  return p;
+}
+
+MaterialProgram geometry_only_program() {
+  MaterialProgram p;
+  p.fragment = "passes/motion.frag";
+  return p;
+}
+
+}  // namespace glintlab::core

@@ -1,0 +1,41 @@
+// A material program: what a surface pass needs to shade with a material —
+// the fragment shader, its compile-time defines, the contents of its material
+// uniform block (set 0, binding 1) — and the content key that identifies what
+// it renders (for the reference cache). The sand factory below knows which
+// features each role needs; nothing outside core/material decides defines.
+#pragma once
+
+#include "core/material/sand_material.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace glintlab::core {
+
+struct MaterialProgram {
+  std::string fragment;              // path under shaders/, e.g. "passes/sand.frag"
+  std::vector<std::string> defines;  // "NAME" or "NAME=VALUE"
+  std::vector<std::byte> block;      // material UBO contents; may be empty
+
+  // XXH3-128 of the preprocessed fragment source (all includes), the defines
+  // and the block: equal keys render equal images.
+  std::string cache_key() const;
+};
+
+// What a program is for.
+enum class ProgramRole {
+  Variant,    // what a variant renders: every feature the run's distances reach (pruned by shader_defines)
+  Reference,  // the ground truth: the footprint integral of the *micro* model, so no far field and no
+              // close-to-far transition (SAND_FAR=0, SAND_CLOSE=1), whatever the distances
+};
+
+// The sand material as a program for `role`. `needs` carries the run's
+// distance range and debug output.
+MaterialProgram sand_program(const SandParams& params, const SandFeatures& needs, ProgramRole role);
+
+// A program that shades nothing (colour 0, alpha = coverage): motion vectors
+// only, or the floor of a benchmark.
+MaterialProgram geometry_only_program();
+
+}  // namespace glintlab::core

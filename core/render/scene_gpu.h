@@ -1,0 +1,39 @@
+// The scene as the GPU holds it: mesh buffers and the environment map with
+// its sampler. Uploaded once per run, shared by every pass and variant.
+#pragma once
+
+#include "core/vk/gpu_resources.h"
+#include "core/vk/handle.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace glintlab::core {
+
+struct Mesh;
+
+// Environment as the GPU needs it: an RGBA32F lat-long mip chain (level 0
+// first, each level half the size of the previous, rounded down, at least 1).
+struct EnvironmentTexture {
+  uint32_t width = 0, height = 0;
+  std::vector<std::vector<float>> mips_rgba;
+};
+
+class SceneGpu {
+ public:
+  SceneGpu(const VkContext& ctx, const Mesh& mesh, const EnvironmentTexture& env);
+
+  const Buffer& vertices() const { return vertices_; }
+  const Buffer& indices() const { return indices_; }
+  uint32_t index_count() const { return index_count_; }
+  const Image2D& env_map() const { return env_map_; }
+  VkSampler env_sampler() const { return sampler_.get(); }
+
+ private:
+  Buffer vertices_, indices_;
+  uint32_t index_count_ = 0;
+  Image2D env_map_;
+  Sampler sampler_;
+};
+
+}  // namespace glintlab::core

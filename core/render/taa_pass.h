@@ -1,0 +1,42 @@
+// The TAA resolve pass (compute, shaders/passes/taa.comp): blends this frame's
+// jittered colour with the reprojected history that the frame graph keeps
+// across frames. Reads "color" and "motion" (the surface pass with motion on);
+// keeps "taa.history" (rgb = resolved colour, a = the surface distance at the
+// pixel, for the disocclusion test) and, with anti_flicker, "taa.luma" (the
+// last lumas of the pixel); writes "taa.color" (rgb resolved, a = coverage).
+// History restarts at camera cuts (the graph drops it), at disocclusions and
+// off-screen reprojections (per pixel), and wherever it is not finite.
+#pragma once
+
+#include "core/render/pass.h"
+#include "core/render/taa_settings.h"
+#include "core/vk/pipeline.h"
+
+#include <string>
+
+namespace glintlab::core {
+
+class TaaPass final : public Pass {
+ public:
+  TaaPass(const VkContext& ctx, TaaSettings settings);
+
+  std::string name() const override { return "taa"; }
+  void declare(PassIO& io) const override;
+  void setup(const TargetSet& targets) override;
+  void record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet& targets) override;
+
+  const TaaSettings& settings() const { return s_; }
+  // The compile-time defines of the resolve shader for these settings.
+  static std::vector<std::string> defines(const TaaSettings& s);
+
+ private:
+  const VkContext& ctx_;
+  TaaSettings s_;
+  DescriptorSetLayout set_layout_;
+  PipelineLayout layout_;
+  Pipeline pipeline_;
+  Sampler sampler_;
+  DescriptorSet sets_[2];  // one per history slot parity
+};
+
+}  // namespace glintlab::core

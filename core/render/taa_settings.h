@@ -1,0 +1,84 @@
+// Every design choice of the TAA resolve (core/render/taa_pass.h) as an
+// experiment option, under a variant's "taa" object. Each enum has one name
+// table (the JSON values). Defaults are Falcor's TAA pass
+// (RenderPasses/Antialiasing/TAA: Halton(2,3) x16 jitter, alpha 0.1, clamp to
+// mean +- 1.0 sigma over 3x3 in YCgCo, 9-tap Catmull-Rom history, the longest
+// motion vector in 3x3, Karis' alpha' = alpha d / (d + box range) near the
+// box edge, no HDR weighting).
+#pragma once
+
+#include "core/render/sample_schedule.h"
+#include "core/util/named_enum.h"
+
+namespace glintlab::core {
+
+// History rectification.
+enum class TaaClamp {
+  None,      // no rectification (ghosts; converges to the mean under a static camera)
+  MinMax,    // clamp to the 3x3 min/max box (UE4's "YCoCg min/max box")
+  Clip,      // clip toward the box centre (INSIDE, Playdead's temporal reprojection)
+  Variance,  // clamp to mean +- gamma sigma over 3x3 (Salvi 2016; Falcor gamma 1.0, UE4 1.25)
+};
+inline constexpr EnumTable<TaaClamp, 4> kTaaClampNames{{
+    {TaaClamp::None, "none"}, {TaaClamp::MinMax, "minmax"}, {TaaClamp::Clip, "clip"}, {TaaClamp::Variance, "variance"}}};
+
+// The colour space of the neighbourhood box.
+enum class TaaSpace { Rgb, YCoCg };
+inline constexpr EnumTable<TaaSpace, 2> kTaaSpaceNames{{{TaaSpace::Rgb, "rgb"}, {TaaSpace::YCoCg, "ycocg"}}};
+
+// How the history is resampled at the reprojected position.
+enum class TaaHistoryFilter {
+  Bilinear,    // 4 taps
+  CatmullRom,  // Falcor's 9-tap Catmull-Rom (bilinear taps combined; Jimenez/vec3.ca)
+};
+inline constexpr EnumTable<TaaHistoryFilter, 2> kTaaHistoryFilterNames{
+    {{TaaHistoryFilter::Bilinear, "bilinear"}, {TaaHistoryFilter::CatmullRom, "catmull_rom"}}};
+
+// Which motion vector reprojects the pixel.
+enum class TaaVelocity {
+  Center,        // the pixel's own
+  ClosestDepth,  // of the nearest surface in 3x3 (INSIDE)
+  Longest,       // the longest in 3x3 (Falcor)
+};
+inline constexpr EnumTable<TaaVelocity, 3> kTaaVelocityNames{
+    {{TaaVelocity::Center, "center"}, {TaaVelocity::ClosestDepth, "closest_depth"}, {TaaVelocity::Longest, "longest"}}};
+
+// The weight of the current frame in the blend.
+enum class TaaFeedback {
+  Fixed,  // alpha
+  Luma,   // INSIDE / Lottes: history weight lerp(0.88, 0.97, (1 - |L0 - L1| / max(L0, L1, 0.2))^2)
+  Karis,  // Falcor: alpha' = alpha d / (d + box range), d = luma distance of the history to the nearer box edge
+};
+inline constexpr EnumTable<TaaFeedback, 3> kTaaFeedbackNames{
+    {{TaaFeedback::Fixed, "fixed"}, {TaaFeedback::Luma, "luma"}, {TaaFeedback::Karis, "karis"}}};
+
+// HDR handling: samples are mapped before the neighbourhood statistics and the
+// blend, and the result is mapped back.
+enum class TaaHdr {
+  None,         // linear radiance
+  InverseLuma,  // c / (1 + L) (Karis 2014, "High-quality temporal supersampling"): weights 1 / (1 + L)
+  Tonemap,      // FSR2: c / (max(r, g, b) + 1), inverted after accumulating
+};
+inline constexpr EnumTable<TaaHdr, 3> kTaaHdrNames{
+    {{TaaHdr::None, "none"}, {TaaHdr::InverseLuma, "inverse_luma"}, {TaaHdr::Tonemap, "tonemap"}}};
+
+struct TaaSettings {
+  JitterSequence jitter = JitterSequence::Halton16;
+  double alpha = 0.1;  // weight of the current frame, (0, 1]
+  TaaClamp clamp = TaaClamp::Variance;
+  double gamma = 1.0;  // variance box half-width in sigmas
+  TaaSpace space = TaaSpace::YCoCg;
+  TaaHistoryFilter history_filter = TaaHistoryFilter::CatmullRom;
+  TaaVelocity velocity = TaaVelocity::Longest;
+  TaaFeedback feedback = TaaFeedback::Karis;
+  TaaHdr hdr = TaaHdr::None;
+  // A luma-oscillation guard (FSR2 "luma instability", UE5 TSR
+  // "ShadingRejection.Flickering"): pixels whose luma alternated in sign over
+  // the last frames keep more of their unrectified history.
+  bool anti_flicker = false;
+  // Relative distance mismatch above which reprojected history is a
+  // disocclusion and the pixel restarts from the current frame.
+  double disocclusion_tolerance = 0.05;
+};
+
+}  // namespace glintlab::core

@@ -1,0 +1,153 @@
+#include "experiments/runner/frame_loop.h"
+
+#include "core/render/sample_schedule.h"
+#include "experiments/runner/progress.h"
+#include "metrics/frame_metrics.h"
+
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+
+namespace glintlab {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+}  // namespace
+
+struct FrameLoop::Impl {
+  const core::VkContext& ctx;
+  const RunPlan& plan;
+  const SceneData& data;
+  const ReferenceCache& cache;
+  std::ostream& log;
+  std::vector<RenderSetup> variants, references;
+  RenderSetup motion;
+  std::unique_ptr<metrics::FrameMetrics> measure;
+  std::vector<metrics::FlickerTracker> trackers;
+
+  Impl(const core::VkContext& c, const core::SceneGpu& scene, const RunPlan& p, const SceneData& d,
+       const metrics::ColorManager& cm, const ReferenceCache& rc, std::ostream& l)
+      : ctx(c), plan(p), data(d), cache(rc), log(l) {
+    const ExperimentSpec& spec = *plan.spec;
+    for (const auto& v : plan.variants)
+      variants.push_back(build_variant(ctx, scene, spec.width, spec.height, *v.spec, v.program));
+    if (plan.measure) {
+      for (const auto& r : plan.references)
+        references.push_back(build_reference(ctx, scene, spec.width, spec.height, r.program));
+      motion = build_motion(ctx, scene, spec.width, spec.height);
+      measure = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
+      trackers.resize(plan.variants.size());
+    }
+  }
+};
+
+FrameLoop::FrameLoop(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan& plan,
+                     const SceneData& data, const metrics::ColorManager& cm, const ReferenceCache& cache,
+                     std::ostream& log)
+    : impl_(std::make_unique<Impl>(ctx, scene, plan, data, cm, cache, log)) {}
+
+FrameLoop::~FrameLoop() = default;
+
+std::vector<std::string> FrameLoop::pass_names() const {
+  std::vector<std::string> out;
+  for (const auto& v : impl_->variants)
+    for (const auto& n : v.graph->pass_names())
+      if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+  return out;
+}
+
+std::vector<std::string> FrameLoop::metric_names() const {
+  return impl_->measure ? impl_->measure->names() : std::vector<std::string>{};
+}
+
+void FrameLoop::run(const std::vector<RecordSink*>& sinks) {
+  Impl& m = *impl_;
+  const ExperimentSpec& spec = *m.plan.spec;
+  const int w = spec.width, h = spec.height;
+  Progress progress(m.log, spec.name, m.plan.frames * int(m.plan.variants.size()));
+  for (int k = 0; k < m.plan.frames; ++k) {
+    const core::FrameCamera cam = spec.path.frame(k, w, h);
+    core::FrameInputs in;
+    in.frame = k;
+    in.uniforms = frame_uniforms(spec, m.data, k);
+    in.camera_cut = cam.cut;
+
+    // ---- motion vectors and references of frame k (shared by every variant)
+    Image motion;
+    std::vector<metrics::FrameMetrics::Reference> prepared(m.references.size());
+    std::vector<bool> ref_cached(m.references.size(), false);
+    if (m.plan.measure) {
+      in.samples = core::samples_for(spec.path, k, w, h, {glm::vec2(0.0f)});
+      motion = std::move(m.motion.graph->execute(in).images.at(m.motion.output));
+      for (size_t r = 0; r < m.references.size(); ++r) {
+        ReferenceRecord rec;
+        rec.reference = int(r);
+        rec.name = m.plan.references[r].name;
+        rec.frame = k;
+        const std::string key = m.plan.reference_key(int(r), k, in.uniforms);
+        bool corrupt = false;
+        std::optional<Image> img = m.cache.load(key, &corrupt);
+        if (corrupt) {
+          m.log << "warning: corrupt reference cache entry " << m.cache.path_of(key) << " removed; re-rendering\n";
+          rec.rebuilt = true;
+        }
+        if (img) {
+          rec.cached = true;
+        } else {
+          in.samples = core::samples_for(spec.path, k, w, h, reference_offsets(spec.reference.grid));
+          auto t0 = Clock::now();
+          core::FrameResult fr = m.references[r].graph->execute(in);
+          rec.wall_ms = ms_since(t0);
+          rec.gpu_ms = fr.gpu_ms;
+          img = std::move(fr.images.at(m.references[r].output));
+          m.cache.store(key, *img);
+        }
+        rec.image = &*img;
+        ref_cached[r] = rec.cached;
+        for (RecordSink* s : sinks) s->reference(rec);
+        prepared[r] = m.measure->prepare(*img);
+      }
+    }
+
+    // ---- every variant
+    for (size_t i = 0; i < m.plan.variants.size(); ++i) {
+      const RunPlan::Variant& pv = m.plan.variants[i];
+      const std::vector<glm::vec2> offsets = variant_offsets(*pv.spec, k);
+      in.samples = core::samples_for(spec.path, k, w, h, offsets);
+      in.jitter_px = offsets.size() == 1 ? offsets[0] : glm::vec2(0.0f);
+      auto t0 = Clock::now();
+      core::FrameResult fr = m.variants[i].graph->execute(in);
+      FrameRecord rec;
+      rec.wall_ms = ms_since(t0);
+      rec.variant = int(i);
+      rec.name = pv.spec->name;
+      rec.frame = k;
+      rec.time_s = cam.time;
+      rec.sequence_start = k == 0 || cam.cut;
+      rec.spp = int(offsets.size());
+      rec.gpu_ms = fr.gpu_ms;
+      rec.passes = fr.timings;
+      const Image& img = fr.images.at(m.variants[i].output);
+      rec.image = &img;
+      rec.scan = metrics::scan_pixels(img, 3);
+      if (!rec.scan.clean()) {
+        defects_ = true;
+        m.log << "\nwarning: " << pv.spec->name << " frame " << k << ": " << rec.scan.nan << " NaN, "
+              << rec.scan.infinite << " Inf, " << rec.scan.negative << " negative pixels\n";
+      }
+      if (m.plan.measure) {
+        if (cam.cut) m.trackers[i].reset();
+        rec.reference_cached = ref_cached[size_t(pv.reference)];
+        rec.metrics = m.measure->measure(img, prepared[size_t(pv.reference)], motion, m.trackers[i],
+                                         &rec.metric_cost_ms);
+      }
+      for (RecordSink* s : sinks) s->frame(rec);
+      std::ostringstream detail;
+      detail << pv.spec->name << " frame " << k << ", " << std::fixed << std::setprecision(1) << rec.wall_ms << " ms";
+      progress.step(detail.str());
+    }
+  }
+}
+
+}  // namespace glintlab

@@ -1,0 +1,224 @@
+#include "experiments/runner/output_writers.h"
+
+#include "core/render/taa_settings.h"
+#include "core/util/atomic_file.h"
+#include "experiments/runner/contact_sheet.h"
+#include "experiments/runner/version.h"
+#include "metrics/color/image_io.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace fs = std::filesystem;
+
+namespace glintlab {
+
+namespace {
+
+nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+fs::path frame_path(const fs::path& dir, int frame, const char* ext) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
+  return dir / name;
+}
+
+nlohmann::json taa_json(const core::TaaSettings& t) {
+  return {{"jitter", enum_name(core::kJitterNames, t.jitter)},
+          {"alpha", t.alpha},
+          {"clamp", enum_name(core::kTaaClampNames, t.clamp)},
+          {"gamma", t.gamma},
+          {"space", enum_name(core::kTaaSpaceNames, t.space)},
+          {"history_filter", enum_name(core::kTaaHistoryFilterNames, t.history_filter)},
+          {"velocity", enum_name(core::kTaaVelocityNames, t.velocity)},
+          {"feedback", enum_name(core::kTaaFeedbackNames, t.feedback)},
+          {"hdr", enum_name(core::kTaaHdrNames, t.hdr)},
+          {"anti_flicker", t.anti_flicker},
+          {"disocclusion_tolerance", t.disocclusion_tolerance}};
+}
+
+}  // namespace
+
+nlohmann::json stats_json(const metrics::Statistics& s) {
+  return {{"mean", num(s.mean())}, {"p95", num(s.p95())}, {"max", num(s.max())}, {"n", s.count()}};
+}
+
+// ---------------------------------------------------------------- CsvWriter
+CsvWriter::CsvWriter(fs::path path, const FrameSchema& schema) : path_(std::move(path)), schema_(schema) {}
+
+void CsvWriter::frame(const FrameRecord& r) { rows_[{r.variant, r.frame}] = schema_.row(r); }
+
+void CsvWriter::finish() {
+  std::string text;
+  const auto& cols = schema_.columns();
+  for (size_t i = 0; i < cols.size(); ++i) text += (i ? "," : "") + cols[i].name;
+  text += "\n";
+  for (const auto& [key, cells] : rows_) {
+    for (size_t i = 0; i < cells.size(); ++i) text += (i ? "," : "") + cells[i];
+    text += "\n";
+  }
+  write_text_atomic(path_, text);
+}
+
+// ---------------------------------------------------------------- SummaryWriter
+SummaryWriter::SummaryWriter(fs::path path, const RunPlan& plan, const FrameSchema& schema, RunInfo info)
+    : path_(std::move(path)), plan_(plan), schema_(schema), info_(std::move(info)),
+      variants_(plan.variants.size()), references_(plan.references.size()) {}
+
+void SummaryWriter::reference(const ReferenceRecord& r) {
+  ReferenceStats& s = references_.at(size_t(r.reference));
+  if (r.cached) {
+    ++s.cached;
+    return;
+  }
+  ++s.rendered;
+  if (r.rebuilt) ++s.rebuilt;
+  s.gpu_ms.add(r.gpu_ms);
+  s.wall_ms.add(r.wall_ms);
+}
+
+void SummaryWriter::frame(const FrameRecord& r) {
+  VariantStats& s = variants_.at(size_t(r.variant));
+  if (r.frame >= info_.warmup_frames || plan_.frames <= info_.warmup_frames) {
+    s.gpu_ms.add(r.gpu_ms);
+    s.wall_ms.add(r.wall_ms);
+    for (const auto& t : r.passes) s.per_pass[t.pass].add(t.gpu_ms);
+  }
+  for (const Column& c : schema_.columns())
+    if (c.summarised) {
+      const double v = schema_.value(r, c.name);
+      // Temporal metrics have no value in a sequence's first frame: that is
+      // "not defined", not a failed measurement.
+      if (std::isnan(v) && r.sequence_start && r.scan.clean()) continue;
+      s.columns[c.name].add(v);
+    }
+  if (!r.metric_cost_ms.empty()) {
+    double total = 0;
+    for (const auto& [name, ms] : r.metric_cost_ms) {
+      metric_ms_per_metric_[name].add(ms);
+      total += ms;
+    }
+    metric_ms_.add(total);
+  }
+}
+
+void SummaryWriter::finish() {
+  const ExperimentSpec& spec = *plan_.spec;
+  nlohmann::json j;
+  j["schema"] = kSummarySchema;
+  j["glintlab_version"] = version();
+  j["experiment"] = spec.name;
+  j["file"] = spec.file;
+  j["device"] = info_.device;
+  j["resolution"] = {spec.width, spec.height};
+  j["frames"] = plan_.frames;
+  j["working_space"] = spec.working_space;
+  j["ocio_config"] = info_.ocio_config;
+  j["measured"] = plan_.measure;
+  j["per_pixel_metrics_referred"] = spec.metric_options.display_view.empty()
+                                        ? std::string("scene")
+                                        : "display (" + spec.metric_options.display_view + ")";
+  j["timing_warmup_frames_excluded"] = info_.warmup_frames;
+  j["statistics"] = "per variant over frames: mean, p95 (nearest rank) and max; a NaN frame makes all three null "
+                    "(and n counts it); +-inf is written as null";
+  nlohmann::json units = nlohmann::json::object();
+  for (const Column& c : schema_.columns())
+    if (!c.unit.empty()) units[c.name] = c.unit;
+  j["units"] = units;
+
+  nlohmann::json refs = nlohmann::json::array();
+  for (size_t i = 0; i < plan_.references.size(); ++i) {
+    const ReferenceStats& s = references_[i];
+    refs.push_back({{"name", plan_.references[i].name},
+                    {"spp", spec.reference.grid * spec.reference.grid},
+                    {"variants", [&] {
+                       nlohmann::json v = nlohmann::json::array();
+                       for (int k : plan_.references[i].variants) v.push_back(plan_.variants[size_t(k)].spec->name);
+                       return v;
+                     }()},
+                    {"frames_rendered", s.rendered},
+                    {"frames_cached", s.cached},
+                    {"corrupt_entries_rebuilt", s.rebuilt},
+                    {"gpu_ms", stats_json(s.gpu_ms)},
+                    {"wall_ms", stats_json(s.wall_ms)}});
+  }
+  j["references"] = refs;
+  if (plan_.measure) {
+    j["metric_ms_per_frame"] = stats_json(metric_ms_);
+    nlohmann::json per = nlohmann::json::object();
+    for (const auto& [name, st] : metric_ms_per_metric_) per[name] = stats_json(st);
+    j["metric_ms_per_metric"] = per;
+  }
+
+  nlohmann::json vs = nlohmann::json::array();
+  for (size_t i = 0; i < plan_.variants.size(); ++i) {
+    const RunPlan::Variant& pv = plan_.variants[i];
+    const VariantSpec& v = *pv.spec;
+    const VariantStats& s = variants_[i];
+    nlohmann::json e;
+    e["name"] = v.name;
+    e["aa"] = enum_name(kAaNames, v.aa);
+    e["glint_model"] = enum_name(core::kGlintModelNames, pv.params.glint_model);
+    e["spp"] = v.samples_per_pixel();
+    if (v.aa == AaMethod::Ssaa) e["ssaa_grid"] = v.ssaa_grid;
+    if (v.aa == AaMethod::Taa) e["taa"] = taa_json(v.taa);
+    e["debug"] = v.debug;
+    e["reference"] = pv.reference >= 0 ? nlohmann::json(plan_.references[size_t(pv.reference)].name) : nullptr;
+    e["defines"] = pv.program.defines;
+    e["gpu_ms"] = stats_json(s.gpu_ms);
+    nlohmann::json pp = nlohmann::json::object();
+    for (const auto& [pass, st] : s.per_pass) pp[pass] = stats_json(st);
+    e["gpu_ms_per_pass"] = pp;
+    e["wall_ms"] = stats_json(s.wall_ms);
+    nlohmann::json m = nlohmann::json::object();
+    for (const Column& c : schema_.columns())
+      if (c.summarised && s.columns.count(c.name)) m[c.name] = stats_json(s.columns.at(c.name));
+    e["metrics"] = m;
+    vs.push_back(e);
+  }
+  j["variants"] = vs;
+  summary_ = j;
+  write_text_atomic(path_, j.dump(2) + "\n");
+}
+
+// ---------------------------------------------------------------- ImageWriter
+ImageWriter::ImageWriter(fs::path dir, const RunPlan& plan, const metrics::ColorManager& cm)
+    : dir_(std::move(dir)), plan_(plan), cm_(cm), chroma_(cm.chromaticities(plan.spec->working_space)) {}
+
+void ImageWriter::save(const std::string& row, int frame, const Image& img, bool exr, bool png) {
+  const OutputSpec& out = plan_.spec->output;
+  if (frame % out.every != 0) return;
+  const fs::path dir = dir_ / row;
+  if (exr || png) fs::create_directories(dir);
+  if (exr) metrics::write_exr(frame_path(dir, frame, "exr").string(), img, chroma_);
+  const bool tile = out.contact_sheet && (!sheet_.count(row) || int(sheet_[row].size()) < out.contact_sheet_columns);
+  if (!png && !tile) return;
+  // Display-encoded through the OCIO display/view, opaque (alpha is coverage
+  // in the render, which a preview should not show as transparency); one
+  // transform serves the PNG and the sheet.
+  Image shown = cm_.display(img, plan_.spec->working_space, out.display, out.view);
+  if (shown.channels == 4)
+    for (size_t i = 3; i < shown.data.size(); i += 4) shown.data[i] = 1.0f;
+  if (png) metrics::write_png(frame_path(dir, frame, "png").string(), shown);
+  if (tile) {
+    if (!sheet_.count(row)) sheet_order_.push_back(row);
+    sheet_[row].push_back({row + " f" + std::to_string(frame), std::move(shown)});
+  }
+}
+
+void ImageWriter::reference(const ReferenceRecord& r) {
+  save(r.name, r.frame, *r.image, plan_.spec->output.exr, false);
+}
+
+void ImageWriter::frame(const FrameRecord& r) {
+  save(r.name, r.frame, *r.image, plan_.spec->output.exr, plan_.spec->output.png);
+}
+
+void ImageWriter::finish() {
+  if (!plan_.spec->output.contact_sheet || sheet_order_.empty()) return;
+  std::vector<std::vector<SheetTile>> rows;
+  for (const auto& name : sheet_order_) rows.push_back(std::move(sheet_[name]));
+  metrics::write_png((dir_ / "contact_sheet.png").string(), make_contact_sheet(rows));
+}
+
+}  // namespace glintlab

@@ -1,0 +1,99 @@
+// The consumers of a run's records that write files, each atomically
+// (core/util/atomic_file.h):
+//   CsvWriter      frames.csv: one row per variant x frame (schema.h columns),
+//                  variants in run order, frames ascending
+//   SummaryWriter  summary.json: per variant the aggregates of every
+//                  summarised column, GPU time per pass and wall time
+//                  (metrics/stats.h rules), per reference its cost
+//   ImageWriter    <variant>/frame_NNNN.exr (scene-linear, chromaticities) and
+//                  .png (through the OCIO display/view), the same for each
+//                  reference, and contact_sheet.png
+#pragma once
+
+#include "experiments/runner/contact_sheet.h"
+#include "experiments/runner/plan.h"
+#include "experiments/runner/records.h"
+#include "experiments/runner/schema.h"
+#include "metrics/color/color_manager.h"
+#include "metrics/stats.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace glintlab {
+
+class CsvWriter final : public RecordSink {
+ public:
+  CsvWriter(std::filesystem::path path, const FrameSchema& schema);
+  void frame(const FrameRecord& r) override;
+  void finish() override;
+
+ private:
+  std::filesystem::path path_;
+  const FrameSchema& schema_;
+  std::map<std::pair<int, int>, std::vector<std::string>> rows_;  // (variant, frame) -> cells
+};
+
+// Run-level facts the summary records besides the aggregates.
+struct RunInfo {
+  std::string device;
+  std::string ocio_config;
+  int warmup_frames = 1;  // frames left out of the timing aggregates
+};
+
+class SummaryWriter final : public RecordSink {
+ public:
+  SummaryWriter(std::filesystem::path path, const RunPlan& plan, const FrameSchema& schema, RunInfo info);
+  void reference(const ReferenceRecord& r) override;
+  void frame(const FrameRecord& r) override;
+  void finish() override;
+  // The document finish() wrote (for the console table).
+  const nlohmann::json& summary() const { return summary_; }
+
+ private:
+  struct VariantStats {
+    metrics::Statistics gpu_ms, wall_ms;
+    std::map<std::string, metrics::Statistics> per_pass;
+    std::map<std::string, metrics::Statistics> columns;
+  };
+  struct ReferenceStats {
+    metrics::Statistics gpu_ms, wall_ms;
+    int rendered = 0, cached = 0, rebuilt = 0;
+  };
+  std::filesystem::path path_;
+  const RunPlan& plan_;
+  const FrameSchema& schema_;
+  RunInfo info_;
+  std::vector<VariantStats> variants_;
+  std::vector<ReferenceStats> references_;
+  metrics::Statistics metric_ms_;
+  std::map<std::string, metrics::Statistics> metric_ms_per_metric_;
+  nlohmann::json summary_;
+};
+
+class ImageWriter final : public RecordSink {
+ public:
+  ImageWriter(std::filesystem::path dir, const RunPlan& plan, const metrics::ColorManager& cm);
+  void reference(const ReferenceRecord& r) override;
+  void frame(const FrameRecord& r) override;
+  void finish() override;
+
+ private:
+  void save(const std::string& row, int frame, const Image& img, bool exr, bool png);
+  std::filesystem::path dir_;
+  const RunPlan& plan_;
+  const metrics::ColorManager& cm_;
+  std::array<float, 8> chroma_;
+  std::vector<std::string> sheet_order_;
+  std::map<std::string, std::vector<SheetTile>> sheet_;
+};
+
+// {"mean", "p95", "max", "n"}; non-finite values are null (JSON has no
+// infinity or NaN).
+nlohmann::json stats_json(const metrics::Statistics& s);
+
+}  // namespace glintlab

@@ -1,0 +1,69 @@
+#include "experiments/runner/plan.h"
+
+#include "core/util/content_hash.h"
+#include "core/vk/shader_compiler.h"
+#include "experiments/runner/variant_factory.h"
+
+#include <algorithm>
+
+namespace glintlab {
+
+RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const metrics::ColorManager& cm,
+                  const SceneData& scene, const std::string& device_name) {
+  RunPlan plan;
+  plan.spec = &spec;
+  plan.frames = frames;
+  plan.measure = measure;
+  std::vector<std::string> ref_keys;
+  for (const VariantSpec& v : spec.variants) {
+    RunPlan::Variant pv;
+    pv.spec = &v;
+    pv.params = to_working_space(v.material, spec.working_space, cm);
+    core::SandFeatures needs = scene.range;
+    needs.debug_output = v.debug;
+    pv.program = core::sand_program(pv.params, needs, core::ProgramRole::Variant);
+    if (measure) {
+      core::MaterialProgram ref = core::sand_program(pv.params, needs, core::ProgramRole::Reference);
+      const std::string key = ref.cache_key();
+      auto it = std::find(ref_keys.begin(), ref_keys.end(), key);
+      if (it == ref_keys.end()) {
+        ref_keys.push_back(key);
+        plan.references.push_back({"", ref, key, {}});
+        it = ref_keys.end() - 1;
+      }
+      pv.reference = int(it - ref_keys.begin());
+      plan.references[size_t(pv.reference)].variants.push_back(int(plan.variants.size()));
+    }
+    plan.variants.push_back(std::move(pv));
+  }
+  for (auto& r : plan.references)
+    r.name = plan.references.size() == 1 ? "reference"
+                                          : "reference-" + plan.variants[size_t(r.variants.front())].spec->name;
+
+  core::ContentHash h;
+  h.add(std::string_view("glintlab-reference-v3"))
+      .add(int64_t(kReferencePatternSeed))
+      .add(spec.source.at("scene").dump())
+      .add(spec.working_space)
+      .add(std::string_view(device_name))
+      .add(int64_t(spec.width))
+      .add(int64_t(spec.height))
+      .add(int64_t(spec.reference.grid))
+      .add(scene.env_texture.mips_rgba[0].data(), scene.env_texture.mips_rgba[0].size() * 4)
+      .add(scene.env.sh_irradiance.data(), sizeof scene.env.sh_irradiance)
+      .add(core::default_shader_compiler().source_hash("passes/surface.vert", core::ShaderStage::Vertex))
+      .add(core::default_shader_compiler().source_hash("passes/sky.frag", core::ShaderStage::Fragment));
+  plan.scene_key = h.hex();
+  return plan;
+}
+
+std::string RunPlan::reference_key(int r, int k, const core::FrameUniforms& fu) const {
+  core::ContentHash h;
+  h.add(std::string_view(scene_key))
+      .add(std::string_view(references.at(size_t(r)).program_key))
+      .add(int64_t(k))
+      .add(&fu, sizeof fu);
+  return h.hex();
+}
+
+}  // namespace glintlab

@@ -1,0 +1,52 @@
+// What the frame loop emits: one record per reference frame and one per
+// variant x frame, handed to every consumer (CSV, summary, images, ...) as
+// soon as the frame is measured. Images are valid only during the call.
+#pragma once
+
+#include "core/render/frame_graph.h"
+#include "core/util/image.h"
+#include "metrics/frame_metrics.h"
+#include "metrics/pixel_scan.h"
+
+#include <string>
+#include <vector>
+
+namespace glintlab {
+
+struct ReferenceRecord {
+  int reference = 0;  // index in RunPlan::references
+  std::string name;
+  int frame = 0;
+  const Image* image = nullptr;  // scene-linear
+  bool cached = false;           // loaded from the cache (not rendered)
+  bool rebuilt = false;          // the cache entry was corrupt and was rendered again
+  double gpu_ms = 0, wall_ms = 0;  // rendered frames only
+};
+
+struct FrameRecord {
+  int variant = 0;  // index in RunPlan::variants
+  std::string name;
+  int frame = 0;
+  double time_s = 0;
+  bool sequence_start = false;  // frame 0 or a camera cut: temporal metrics have no predecessor
+  int spp = 1;
+  double gpu_ms = 0;                      // the variant's whole frame (GPU timestamps)
+  std::vector<core::PassTiming> passes;   // per pass
+  double wall_ms = 0;                     // record, submit, wait and read back
+  metrics::PixelScan scan;                // NaN / Inf / negative pixels of the image
+  metrics::NamedValues metrics;           // empty when the run does not measure
+  metrics::NamedValues metric_cost_ms;    // wall time of each metric group
+  bool reference_cached = false;
+  const Image* image = nullptr;           // scene-linear RGBA
+};
+
+class RecordSink {
+ public:
+  virtual ~RecordSink() = default;
+  virtual void reference(const ReferenceRecord&) {}
+  virtual void frame(const FrameRecord& r) = 0;
+  // After the last frame: write what is written once.
+  virtual void finish() {}
+};
+
+}  // namespace glintlab

@@ -1,0 +1,118 @@
+#include "experiments/runner/schema.h"
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace glintlab {
+
+namespace {
+
+const std::map<std::string, std::string>& unit_table() {
+  static const std::map<std::string, std::string> t = {
+      {"time_s", "s"},
+      {"spp", "samples per pixel"},
+      {"gpu_ms", "ms (GPU timestamps)"},
+      {"wall_ms", "ms (record, submit, wait, read back)"},
+      {"nan_px", "pixels"},
+      {"inf_px", "pixels"},
+      {"negative_px", "pixels"},
+      {"nonfinite_pixels", "pixels (NaN or Inf)"},
+      {"negative_pixels", "pixels (finite < 0)"},
+      {"deltaE2000", "ΔE00 (CIEDE2000)"},
+      {"deltaEITP", "ΔE_ITP (BT.2124, Y = 1 at 100 cd/m²)"},
+      {"flip", "FLIP error in [0, 1]"},
+      {"psnr", "dB (luminance, peak 1)"},
+      {"relative", "|Yt − Yr| / (Yr + 0.01)"},
+      {"flicker_ratio", "ratio (mean Weber contrast of change along the motion, test / reference)"},
+      {"temporal_error", "PQ code value (mean |e_t − e_{t−1}|, e = PQ(T) − PQ(R), fixed pixel)"},
+      {"temporal_error_mc", "PQ code value (the same along the motion)"},
+      {"frame_diff_ratio", "ratio (mean |ΔT| / mean |ΔR| at a fixed pixel, PQ)"},
+      {"flicker_valid_px", "pixels"},
+      {"flicker_disoccluded_px", "pixels"},
+      {"glint_density_test", "glints per 1000 px"},
+      {"glint_density_ref", "glints per 1000 px"},
+      {"glint_hist_emd_oct", "octaves"},
+      {"pooled_error", "Y (RMS of 8×8-pixel block means)"},
+  };
+  return t;
+}
+
+}  // namespace
+
+std::string unit_of(const std::string& name) {
+  auto it = unit_table().find(name);
+  if (it != unit_table().end()) return it->second;
+  if (name.size() > 4 && name.compare(name.size() - 4, 4, "_max") == 0) return unit_of(name.substr(0, name.size() - 4));
+  if (name.rfind("pooled_bias_", 0) == 0 || name.rfind("pooled_rms_", 0) == 0) return "Y (block means)";
+  if (name.rfind("gpu_ms_", 0) == 0) return "ms (GPU timestamps)";
+  return "";
+}
+
+std::string csv_number(double x) {
+  if (std::isnan(x)) return "";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  std::ostringstream o;
+  o << std::setprecision(7) << x;
+  return o.str();
+}
+
+FrameSchema::FrameSchema(const std::vector<std::string>& metric_names, const std::vector<std::string>& pass_names)
+    : passes_(pass_names) {
+  auto add = [&](const std::string& n, bool summarised, bool integer) {
+    columns_.push_back({n, unit_of(n), summarised, integer});
+  };
+  add("variant", false, false);
+  add("frame", false, true);
+  add("time_s", false, false);
+  add("spp", false, true);
+  add("gpu_ms", false, false);
+  add("wall_ms", false, false);
+  for (const auto& p : pass_names) add("gpu_ms_" + p, false, false);
+  for (const char* n : {"nan_px", "inf_px", "negative_px"}) add(n, false, true);
+  add("nonfinite_pixels", true, true);
+  add("negative_pixels", true, true);
+  for (const auto& m : metric_names) add(m, true, m.size() > 3 && m.compare(m.size() - 3, 3, "_px") == 0);
+  if (!metric_names.empty()) add("reference_cached", false, true);
+}
+
+double FrameSchema::value(const FrameRecord& r, const std::string& name) const {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (name == "frame") return r.frame;
+  if (name == "time_s") return r.time_s;
+  if (name == "spp") return r.spp;
+  if (name == "gpu_ms") return r.gpu_ms;
+  if (name == "wall_ms") return r.wall_ms;
+  if (name == "nan_px") return double(r.scan.nan);
+  if (name == "inf_px") return double(r.scan.infinite);
+  if (name == "negative_px") return double(r.scan.negative);
+  if (name == "nonfinite_pixels") return double(r.scan.nan + r.scan.infinite);
+  if (name == "negative_pixels") return double(r.scan.negative);
+  if (name == "reference_cached") return r.reference_cached ? 1.0 : 0.0;
+  if (name.rfind("gpu_ms_", 0) == 0) {
+    for (const auto& t : r.passes)
+      if ("gpu_ms_" + t.pass == name) return t.gpu_ms;
+    return nan;
+  }
+  for (const auto& [n, v] : r.metrics)
+    if (n == name) return v;
+  return nan;
+}
+
+std::vector<std::string> FrameSchema::row(const FrameRecord& r) const {
+  std::vector<std::string> cells;
+  cells.reserve(columns_.size());
+  for (const Column& c : columns_) {
+    if (c.name == "variant") {
+      cells.push_back(r.name);
+      continue;
+    }
+    const double v = value(r, c.name);
+    cells.push_back(c.integer && std::isfinite(v) ? std::to_string(static_cast<long long>(v)) : csv_number(v));
+  }
+  return cells;
+}
+
+}  // namespace glintlab

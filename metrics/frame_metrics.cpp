@@ -1,0 +1,102 @@
+#include "metrics/frame_metrics.h"
+
+#include "metrics/color/measurement_space.h"
+#include "metrics/glint_stats.h"
+#include "metrics/pixel_scan.h"
+#include "metrics/pooled_error.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace glintlab::metrics {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+}  // namespace
+
+FrameMetrics::FrameMetrics(const ColorManager& cm, std::string working_space, std::vector<std::string> per_pixel,
+                           MetricOptions options)
+    : cm_(cm), space_(std::move(working_space)), per_pixel_(std::move(per_pixel)), options_(std::move(options)) {}
+
+FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear) const {
+  Reference r;
+  r.xyz = cm_.to_xyz_d65(ref_linear, space_);
+  r.metric_xyz = options_.display_view.empty() ? r.xyz : metric_xyz(cm_, ref_linear, space_, options_);
+  return r;
+}
+
+std::vector<std::string> FrameMetrics::names() const {
+  std::vector<std::string> n;
+  for (const auto& m : per_pixel_) {
+    n.push_back(m);
+    n.push_back(m + "_max");
+  }
+  for (const char* s : {"flicker_ratio", "temporal_error", "temporal_error_mc", "frame_diff_ratio",
+                        "flicker_valid_px", "flicker_disoccluded_px", "glint_density_test", "glint_density_ref",
+                        "glint_hist_emd_oct"})
+    n.emplace_back(s);
+  for (int b : default_pool_block_sizes()) {
+    n.push_back("pooled_bias_" + std::to_string(b));
+    n.push_back("pooled_rms_" + std::to_string(b));
+  }
+  n.emplace_back("pooled_error");
+  return n;
+}
+
+NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref, const Image& motion,
+                                  FlickerTracker& flicker, NamedValues* cost_ms) const {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  NamedValues v;
+  auto timed = [&](const std::string& name, auto&& fn) {
+    auto t0 = Clock::now();
+    fn();
+    if (cost_ms) cost_ms->emplace_back(name, ms_since(t0));
+  };
+  Image test_xyz, test_metric;
+  timed("convert", [&] {
+    test_xyz = cm_.to_xyz_d65(test_linear, space_);
+    test_metric = options_.display_view.empty() ? test_xyz : metric_xyz(cm_, test_linear, space_, options_);
+  });
+  const bool defect = !scan_pixels(test_linear, 3).clean();
+
+  for (const auto& name : per_pixel_)
+    timed(name, [&] {
+      MetricResult r = evaluate_metric(name, test_metric, ref.metric_xyz, options_);
+      v.emplace_back(name, defect ? nan : r.mean);
+      v.emplace_back(name + "_max", defect ? nan : r.max);
+    });
+  timed("flicker", [&] {
+    std::optional<FlickerFrame> f = flicker.push(test_xyz, ref.xyz, motion);
+    auto put = [&](const char* n, double x) { v.emplace_back(n, f && !defect ? x : nan); };
+    put("flicker_ratio", f ? f->flicker_ratio : nan);
+    put("temporal_error", f ? f->temporal_error : nan);
+    put("temporal_error_mc", f ? f->temporal_error_mc : nan);
+    put("frame_diff_ratio", f ? f->frame_diff_ratio : nan);
+    v.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
+    v.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
+  });
+  timed("glints", [&] {
+    GlintComparison gc = compare_glints(test_xyz, ref.xyz);
+    v.emplace_back("glint_density_test", defect ? nan : gc.test.density_per_1000px);
+    v.emplace_back("glint_density_ref", gc.ref.density_per_1000px);
+    v.emplace_back("glint_hist_emd_oct", defect ? nan : gc.emd_octaves);
+  });
+  timed("pooled", [&] {
+    std::vector<PooledErrorScale> pooled = pooled_error(test_xyz, ref.xyz, 1);
+    double pooled8 = nan;
+    for (int b : default_pool_block_sizes()) {
+      double bias = nan, rms = nan;
+      for (const auto& p : pooled)
+        if (p.block_size == b && !defect) bias = p.bias, rms = p.rms;
+      v.emplace_back("pooled_bias_" + std::to_string(b), bias);
+      v.emplace_back("pooled_rms_" + std::to_string(b), rms);
+      if (b == kPooledErrorBlock) pooled8 = rms;
+    }
+    v.emplace_back("pooled_error", pooled8);
+  });
+  return v;
+}
+
+}  // namespace glintlab::metrics

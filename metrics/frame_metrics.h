@@ -1,0 +1,61 @@
+// Every metric of one rendered frame against its reference frame: the one
+// place the runner (and the benchmark) measure a frame. Inputs are
+// scene-linear images in the run's working space; names are those of the
+// runner's schema (experiments/runner/schema.h).
+//
+//   <m>, <m>_max           per-pixel metric m of the registry: mean and max over pixels
+//   flicker_ratio, temporal_error, temporal_error_mc, frame_diff_ratio,
+//   flicker_valid_px, flicker_disoccluded_px     (metrics/flicker.h; from the second frame on)
+//   glint_density_test, glint_density_ref, glint_hist_emd_oct   (metrics/glint_stats.h)
+//   pooled_bias_<s>, pooled_rms_<s> for s = 2 ... 64, and pooled_error = pooled_rms_8
+//                                                  (metrics/pooled_error.h, luminance Y)
+// A frame with NaN, Inf or negative pixels is a defect: every value above is
+// NaN for it (the pixel counts are reported by the runner), so no aggregate
+// can turn it into a clean-looking number.
+#pragma once
+
+#include "core/util/image.h"
+#include "metrics/color/color_manager.h"
+#include "metrics/flicker.h"
+#include "metrics/metric_registry.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace glintlab::metrics {
+
+constexpr int kPooledErrorBlock = 8;  // pooled_error = pooled_rms at 8x8 px blocks
+
+using NamedValues = std::vector<std::pair<std::string, double>>;
+
+class FrameMetrics {
+ public:
+  FrameMetrics(const ColorManager& cm, std::string working_space, std::vector<std::string> per_pixel,
+               MetricOptions options);
+
+  // The reference of a frame, converted once and shared by every variant.
+  struct Reference {
+    Image xyz;         // scene-referred XYZ D65
+    Image metric_xyz;  // what per-pixel metrics compare (display-referred when a view is set)
+  };
+  Reference prepare(const Image& ref_linear) const;
+
+  // All values of `test_linear` against `ref`; feeds `flicker` (the variant's
+  // tracker) with the frame's motion target. `cost_ms`, if given, receives the
+  // wall time of each metric group ("convert", each per-pixel metric,
+  // "flicker", "glints", "pooled").
+  NamedValues measure(const Image& test_linear, const Reference& ref, const Image& motion, FlickerTracker& flicker,
+                      NamedValues* cost_ms = nullptr) const;
+
+  // The names measure() returns, in order.
+  std::vector<std::string> names() const;
+
+ private:
+  const ColorManager& cm_;
+  std::string space_;
+  std::vector<std::string> per_pixel_;
+  MetricOptions options_;
+};
+
+}  // namespace glintlab::metrics

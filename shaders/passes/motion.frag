@@ -1,0 +1,21 @@
+#version 450
+// The cheapest surface program: no shading (colour = 0, alpha = coverage),
+// only the motion vectors and distances of common/motion.glsl when
+// SURFACE_MOTION is on. Serves the runner's motion pass (the exact vectors the
+// flicker metric needs, shared by every variant and the reference) and is the
+// floor of the throughput benchmark (geometry and passes without material).
+#include "common/frame.glsl"
+#include "common/surface_interface.glsl"
+#include "common/motion.glsl"
+
+layout(location = 0) out vec4 out_color;
+#if SURFACE_MOTION
+layout(location = 1) out vec4 out_motion;
+#endif
+
+void main() {
+  out_color = vec4(0.0, 0.0, 0.0, sample_jitter_weight.z);
+#if SURFACE_MOTION
+  out_motion = surface_motion(v_x, v_prev_x);
+#endif
+}

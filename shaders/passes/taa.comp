@@ -1,0 +1,279 @@
+#version 450
+// TAA resolve: this frame's jittered colour blended with the reprojected
+// history. Every design choice is a compile-time option (core/render/taa_settings.h
+// names them and cites their sources); the defaults are Falcor's TAA pass.
+//
+// Per pixel p (texel centre c = p + 0.5):
+//   1. v = motion vector chosen by TAA_VELOCITY; the history is at q = c - v.
+//   2. History is invalid (the pixel restarts from the current colour) in the
+//      first frame after a reset or camera cut, when q is off-screen, when the
+//      point was behind the previous camera, when the surface stored at q is not
+//      the reprojected point (distance mismatch: a disocclusion), or when the
+//      resampled history is not finite.
+//   3. Samples are mapped for HDR (TAA_HDR), then to the box space (TAA_SPACE);
+//      the history is rectified against the 3x3 neighbourhood (TAA_CLAMP).
+//   4. out = mix(history, current, alpha'), alpha' from TAA_FEEDBACK (and the
+//      anti-flicker guard), mapped back to linear radiance, clamped to >= 0.
+// Inputs use texelFetch only (exact, no filtering hardware needed).
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0) uniform sampler2D color_tex;     // this frame, jittered, RGBA32F
+layout(set = 0, binding = 1) uniform sampler2D motion_tex;    // common/motion.glsl layout
+layout(set = 0, binding = 2) uniform sampler2D history_tex;   // last frame's resolve: rgb, a = distance
+layout(set = 0, binding = 3) uniform sampler2D luma_tex;      // anti-flicker: last lumas
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D out_img;
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D history_out;
+layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D luma_out;
+
+layout(push_constant) uniform Push {
+  vec4 size_alpha_gamma;  // width, height, alpha, gamma
+  vec4 valid_tol;         // history valid (0/1), disocclusion tolerance
+};
+
+#define CLAMP_NONE 0
+#define CLAMP_MINMAX 1
+#define CLAMP_CLIP 2
+#define CLAMP_VARIANCE 3
+#define FILTER_BILINEAR 0
+#define FILTER_CATMULL_ROM 1
+#define VELOCITY_CENTER 0
+#define VELOCITY_CLOSEST_DEPTH 1
+#define VELOCITY_LONGEST 2
+#define FEEDBACK_FIXED 0
+#define FEEDBACK_LUMA 1
+#define FEEDBACK_KARIS 2
+#define HDR_NONE 0
+#define HDR_INVERSE_LUMA 1
+#define HDR_TONEMAP 2
+
+#ifndef TAA_CLAMP
+#define TAA_CLAMP CLAMP_VARIANCE
+#endif
+#ifndef TAA_SPACE
+#define TAA_SPACE 1
+#endif
+#ifndef TAA_FILTER
+#define TAA_FILTER FILTER_CATMULL_ROM
+#endif
+#ifndef TAA_VELOCITY
+#define TAA_VELOCITY VELOCITY_LONGEST
+#endif
+#ifndef TAA_FEEDBACK
+#define TAA_FEEDBACK FEEDBACK_KARIS
+#endif
+#ifndef TAA_HDR
+#define TAA_HDR HDR_NONE
+#endif
+#ifndef TAA_ANTI_FLICKER
+#define TAA_ANTI_FLICKER 0
+#endif
+
+ivec2 g_size;
+
+float luma(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }  // Rec. 709 luma of linear rgb
+
+// HDR mapping (Karis 2014; FSR2) and its inverse; both keep colours >= 0 finite.
+vec3 hdr_forward(vec3 c) {
+#if TAA_HDR == HDR_INVERSE_LUMA
+  return c / (1.0 + max(luma(c), 0.0));
+#elif TAA_HDR == HDR_TONEMAP
+  return c / (max(max(c.r, c.g), max(c.b, 0.0)) + 1.0);
+#else
+  return c;
+#endif
+}
+vec3 hdr_inverse(vec3 c) {
+#if TAA_HDR == HDR_INVERSE_LUMA
+  return c / max(1.0 - luma(c), 1e-6);
+#elif TAA_HDR == HDR_TONEMAP
+  return c / max(1.0 - max(max(c.r, c.g), c.b), 1e-6);
+#else
+  return c;
+#endif
+}
+
+// Box space: rgb, or YCoCg (Y = r/4 + g/2 + b/4; its first channel is luma-like).
+vec3 to_space(vec3 c) {
+#if TAA_SPACE == 1
+  return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
+#else
+  return c;
+#endif
+}
+vec3 from_space(vec3 y) {
+#if TAA_SPACE == 1
+  return vec3(y.x + y.y - y.z, y.x + y.z, y.x - y.y - y.z);
+#else
+  return y;
+#endif
+}
+// The luma of a box-space colour.
+float space_luma(vec3 y) {
+#if TAA_SPACE == 1
+  return y.x;
+#else
+  return luma(y);
+#endif
+}
+
+vec4 fetch(sampler2D t, ivec2 p) { return texelFetch(t, clamp(p, ivec2(0), g_size - 1), 0); }
+
+// Bilinear resample at continuous pixel position `pos` (texel centres at +0.5).
+vec3 bilinear(sampler2D t, vec2 pos) {
+  vec2 q = pos - 0.5;
+  vec2 f = q - floor(q);
+  ivec2 i = ivec2(floor(q));  // q is within [-1, size] here: no out-of-range conversion
+  vec3 a = fetch(t, i).rgb, b = fetch(t, i + ivec2(1, 0)).rgb;
+  vec3 c = fetch(t, i + ivec2(0, 1)).rgb, d = fetch(t, i + ivec2(1, 1)).rgb;
+  return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
+// Catmull-Rom in Falcor's 9-tap form: the 4x4 bicubic taps with the two
+// middle weights of each axis merged into one bilinear lookup.
+vec3 catmull_rom(sampler2D t, vec2 pos) {
+  vec2 tc = floor(pos - 0.5) + 0.5;
+  vec2 f = pos - tc, f2 = f * f, f3 = f2 * f;
+  vec2 w0 = f2 - 0.5 * (f3 + f);
+  vec2 w1 = 1.5 * f3 - 2.5 * f2 + 1.0;
+  vec2 w3 = 0.5 * (f3 - f2);
+  vec2 w2 = 1.0 - w0 - w1 - w3;
+  vec2 w12 = w1 + w2;
+  vec2 p0 = tc - 1.0, p3 = tc + 2.0, p12 = tc + w2 / max(w12, vec2(1e-8));
+  vec3 r = vec3(0.0);
+  r += bilinear(t, vec2(p0.x, p0.y)) * w0.x * w0.y;
+  r += bilinear(t, vec2(p12.x, p0.y)) * w12.x * w0.y;
+  r += bilinear(t, vec2(p3.x, p0.y)) * w3.x * w0.y;
+  r += bilinear(t, vec2(p0.x, p12.y)) * w0.x * w12.y;
+  r += bilinear(t, vec2(p12.x, p12.y)) * w12.x * w12.y;
+  r += bilinear(t, vec2(p3.x, p12.y)) * w3.x * w12.y;
+  r += bilinear(t, vec2(p0.x, p3.y)) * w0.x * w3.y;
+  r += bilinear(t, vec2(p12.x, p3.y)) * w12.x * w3.y;
+  r += bilinear(t, vec2(p3.x, p3.y)) * w3.x * w3.y;
+  return max(r, vec3(0.0));  // the negative lobes can ring below zero
+}
+
+// INSIDE's clip: move h toward the box centre until it is inside the box.
+vec3 clip_to_box(vec3 h, vec3 lo, vec3 hi) {
+  vec3 centre = 0.5 * (hi + lo), ext = 0.5 * (hi - lo) + 1e-7;
+  vec3 d = h - centre;
+  vec3 t = abs(d / ext);
+  float m = max(t.x, max(t.y, t.z));
+  return m > 1.0 ? centre + d / m : h;
+}
+
+bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+void main() {
+  g_size = ivec2(size_alpha_gamma.xy);
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, g_size))) return;
+  float alpha = size_alpha_gamma.z, gamma = size_alpha_gamma.w;
+  bool valid = valid_tol.x > 0.5;
+  float tol = valid_tol.y;
+
+  // ---- current neighbourhood (HDR-mapped, in box space) and motion
+  vec4 centre_px = fetch(color_tex, p);
+  vec3 cur = to_space(hdr_forward(max(centre_px.rgb, vec3(0.0))));
+  vec3 lo = cur, hi = cur, m1 = vec3(0.0), m2 = vec3(0.0);
+  vec4 mc = fetch(motion_tex, p);
+  vec2 v = mc.xy;
+  float best_d = mc.z > 0.0 ? mc.z : 3.4e38, best_len = dot(mc.xy, mc.xy);
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 o = p + ivec2(dx, dy);
+      vec3 s = to_space(hdr_forward(max(fetch(color_tex, o).rgb, vec3(0.0))));
+      lo = min(lo, s);
+      hi = max(hi, s);
+      m1 += s;
+      m2 += s * s;
+      vec4 mo = fetch(motion_tex, o);
+#if TAA_VELOCITY == VELOCITY_CLOSEST_DEPTH
+      float d = mo.z > 0.0 ? mo.z : 3.4e38;  // the sky is farthest
+      if (d < best_d) { best_d = d; v = mo.xy; }
+#elif TAA_VELOCITY == VELOCITY_LONGEST
+      float l = dot(mo.xy, mo.xy);
+      if (l > best_len) { best_len = l; v = mo.xy; }
+#endif
+    }
+  vec3 mean = m1 / 9.0;
+  vec3 sigma = sqrt(max(m2 / 9.0 - mean * mean, vec3(0.0)));
+
+  // ---- reprojection and validity
+  vec2 q = vec2(p) + 0.5 - v;
+  bool on_screen = all(greaterThanEqual(q, vec2(0.0))) && all(lessThanEqual(q, vec2(g_size))) && finite3(vec3(q, 0.0));
+  if (!on_screen) valid = false;
+  if (valid) {
+    ivec2 qi = ivec2(clamp(floor(q), vec2(0.0), vec2(g_size - 1)));
+    float stored = fetch(history_tex, qi).a;  // distance of the surface at q last frame (0 = sky)
+    if (mc.z > 0.0) valid = mc.w > 0.0 && stored > 0.0 && abs(stored - mc.w) <= tol * mc.w;
+    else valid = stored <= 0.0;  // sky now: sky then
+  }
+  vec3 hist_lin = vec3(0.0);
+  if (valid) {
+#if TAA_FILTER == FILTER_CATMULL_ROM
+    hist_lin = catmull_rom(history_tex, q);
+#else
+    hist_lin = bilinear(history_tex, q);
+#endif
+    valid = finite3(hist_lin);
+  }
+
+  vec3 result = cur;
+  float a = 1.0;
+  vec4 lumas = vec4(0.0);
+  if (valid) {
+    vec3 raw = to_space(hdr_forward(max(hist_lin, vec3(0.0))));
+    vec3 h = raw;
+#if TAA_CLAMP == CLAMP_MINMAX
+    h = clamp(raw, lo, hi);
+#elif TAA_CLAMP == CLAMP_CLIP
+    h = clip_to_box(raw, lo, hi);
+#elif TAA_CLAMP == CLAMP_VARIANCE
+    vec3 vlo = mean - gamma * sigma, vhi = mean + gamma * sigma;
+    lo = vlo;
+    hi = vhi;
+    h = clamp(raw, vlo, vhi);
+#endif
+
+#if TAA_FEEDBACK == FEEDBACK_LUMA
+    float L0 = space_luma(cur), L1 = space_luma(h);
+    float k = 1.0 - abs(L0 - L1) / max(max(L0, L1), 0.2);
+    a = 1.0 - mix(0.88, 0.97, k * k);
+#elif TAA_FEEDBACK == FEEDBACK_KARIS
+    float hl = space_luma(h), blo = space_luma(lo), bhi = space_luma(hi);
+    float d = min(abs(hl - blo), abs(bhi - hl)), range = max(bhi - blo, 0.0);
+    a = d + range > 0.0 ? clamp(alpha * d / (d + range), 0.0, 1.0) : alpha;
+#else
+    a = alpha;
+#endif
+
+#if TAA_ANTI_FLICKER
+    // Luma instability (FSR2; UE5 TSR ShadingRejection.Flickering): the last
+    // three lumas of this surface point and the current one; where successive
+    // changes alternate in sign and are large against the luma, the pixel
+    // oscillates and keeps more of its unrectified history.
+    vec4 lh = texelFetch(luma_tex, ivec2(clamp(floor(q), vec2(0.0), vec2(g_size - 1))), 0);
+    float Lc = space_luma(cur);
+    float d1 = lh.y - lh.x, d2 = lh.z - lh.y, d3 = Lc - lh.z;
+    float big = 0.1 * max(max(lh.x, lh.y), max(lh.z, Lc)) + 1e-6;
+    float alternations = (d1 * d2 < 0.0 && min(abs(d1), abs(d2)) > big ? 1.0 : 0.0) +
+                         (d2 * d3 < 0.0 && min(abs(d2), abs(d3)) > big ? 1.0 : 0.0);
+    float s = lh.w >= 3.0 ? 0.5 * alternations : 0.0;  // needs three remembered lumas
+    h = mix(h, raw, s);
+    a *= 1.0 - 0.5 * s;
+    lumas = vec4(lh.y, lh.z, Lc, min(lh.w + 1.0, 3.0));
+#endif
+    result = mix(h, cur, a);
+  }
+#if TAA_ANTI_FLICKER
+  if (!valid) lumas = vec4(0.0, 0.0, space_luma(cur), 1.0);
+#endif
+
+  vec3 lin = max(hdr_inverse(max(from_space(result), vec3(0.0))), vec3(0.0));
+  if (!finite3(lin)) lin = max(centre_px.rgb, vec3(0.0));
+  imageStore(out_img, p, vec4(lin, centre_px.a));
+  imageStore(history_out, p, vec4(lin, mc.z));
+#if TAA_ANTI_FLICKER
+  imageStore(luma_out, p, lumas);
+#endif
+}
