@@ -45,6 +45,49 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   return out;
 }
 
+std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>& prev_distance, double tolerance) {
+  const int w = motion.width, h = motion.height;
+  if (prev_distance.size() != motion.pixel_count())
+    throw std::invalid_argument("reproject: the previous distances and the motion image differ in size");
+  std::vector<Reprojected> out(motion.pixel_count());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      Reprojected& r = out[std::size_t(y) * w + x];
+      const float* m = motion.px(x, y);
+      if (!(m[2] > 0.0f)) {
+        r.state = Reprojected::kBackground;
+        continue;
+      }
+      // The centre of pixel p sat at (x + 0.5, y + 0.5) - v in frame t-1; in texel-index
+      // coordinates (texel centres at integers) that is (x, y) - v.
+      const double qx = x - double(m[0]), qy = y - double(m[1]);
+      const double d_prev = m[3];
+      bool ok = d_prev > 0.0 && std::isfinite(qx) && std::isfinite(qy) && qx >= 0.0 && qy >= 0.0 &&
+                qx <= double(w - 1) && qy <= double(h - 1);
+      if (ok) {
+        const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
+        const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+        const double fx = qx - x0, fy = qy - y0;
+        const int tx[4] = {x0, x1, x0, x1}, ty[4] = {y0, y0, y1, y1};
+        const double tw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        double d_interp = 0.0;
+        for (int k = 0; k < 4; ++k) {
+          r.idx[k] = unsigned(ty[k]) * unsigned(w) + unsigned(tx[k]);
+          r.weight[k] = float(tw[k]);
+          // A tap that saw no surface, or a surface far off the point's distance
+          // (another object across a silhouette), contaminates the sample.
+          if (tw[k] > 0.0 && !(std::abs(prev_distance[r.idx[k]] - d_prev) <= kSilhouetteTolerance * d_prev)) ok = false;
+          d_interp += tw[k] * prev_distance[r.idx[k]];
+        }
+        // On a smooth surface the interpolated distance is the point's; across a
+        // silhouette it mixes the two surfaces and misses it.
+        ok = ok && std::abs(d_interp - d_prev) <= tolerance * d_prev;
+      }
+      r.state = ok ? Reprojected::kValid : Reprojected::kDisoccluded;
+    }
+  return out;
+}
+
 std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Image& ref_xyz, const Image& motion) {
   require_same_size(test_xyz, ref_xyz, "FlickerTracker::push");
   require_same_size(test_xyz, motion, "FlickerTracker::push (motion)");
@@ -67,6 +110,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Im
   if (pushed_ > 0) {
     FlickerFrame f;
     const std::vector<float> ya = adaptation_luminance(ref_xyz);
+    const std::vector<Reprojected> warp = reproject(motion, prev_dist_);
     double s_ct = 0, s_cr = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0;
     auto pq = [](double Y) { return perceptual_luminance(Y); };
     for (int y = 0; y < h; ++y)
@@ -78,37 +122,16 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Im
         s_dt += std::abs(dT);
         s_dr += std::abs(dR);
         // Along the motion.
-        const float* m = motion.px(x, y);
-        if (!(m[2] > 0.0f)) {
+        const Reprojected& rp = warp[i];
+        if (rp.state == Reprojected::kBackground) {
           ++f.background_px;
           continue;
         }
-        // The centre of pixel p sat at (x + 0.5, y + 0.5) - v in frame t-1; in texel-index
-        // coordinates (texel centres at integers) that is (x, y) - v.
-        const double qx = x - double(m[0]), qy = y - double(m[1]);
-        const double d_prev = m[3];
-        bool ok = d_prev > 0.0 && std::isfinite(qx) && std::isfinite(qy) && qx >= 0.0 && qy >= 0.0 &&
-                  qx <= double(w - 1) && qy <= double(h - 1);
-        double t_prev = 0, r_prev = 0;
-        if (ok) {
-          const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
-          const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
-          const double fx = qx - x0, fy = qy - y0;
-          const int tx[4] = {x0, x1, x0, x1}, ty[4] = {y0, y0, y1, y1};
-          const double tw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-          for (int k = 0; k < 4 && ok; ++k) {
-            if (tw[k] <= 0.0) continue;
-            const std::size_t j = std::size_t(ty[k]) * w + tx[k];
-            const double dj = prev_dist_[j];
-            ok = dj > 0.0 && std::abs(dj - d_prev) <= kDisocclusionTolerance * d_prev;
-            t_prev += tw[k] * prev_yt_[j];
-            r_prev += tw[k] * prev_yr_[j];
-          }
-        }
-        if (!ok) {
+        if (rp.state == Reprojected::kDisoccluded) {
           ++f.disoccluded_px;
           continue;
         }
+        const double t_prev = rp.sample(prev_yt_), r_prev = rp.sample(prev_yr_);
         ++f.valid_px;
         const double denom = double(ya[i]) + kContrastEpsilon;
         s_ct += std::abs(double(yt[i]) - t_prev) / denom;

@@ -25,9 +25,11 @@
 // Masked (left out of every along-the-motion mean, and counted):
 //   background: no surface at p in frame t (the sky);
 //   disoccluded: p - v_t lies outside the image, the point was behind the
-//     previous camera, or a bilinear tap of the previous frame at p - v_t saw
-//     another surface (its distance differs from the point's distance in frame
-//     t-1 by more than 5 %).
+//     previous camera, the previous frame's distance interpolated at p - v_t
+//     differs from the point's own distance in frame t-1 by more than 5 %
+//     (another surface was in front of it), or one of the bilinear taps saw no
+//     surface or one more than 25 % off that distance (the taps straddle a
+//     silhouette: the sample would mix in another surface).
 // Also reported:
 //   temporal_error    = mean |e_t - e_{t-1}| per pixel (all pixels, no motion), e = PQ(Y_T) - PQ(Y_R)
 //                       in PQ code values (Y = 1 at 100 cd/m^2): the error's change at a fixed pixel
@@ -52,7 +54,8 @@ namespace glintlab::metrics {
 constexpr double kFlickerReferenceNits = 100.0;  // cd/m^2 for Y = 1 (PQ encodings)
 constexpr double kAdaptationSigmaPx = 2.0;
 constexpr double kContrastEpsilon = 0.01;
-constexpr double kDisocclusionTolerance = 0.05;
+constexpr double kDisocclusionTolerance = 0.05;  // interpolated distance vs the point's
+constexpr double kSilhouetteTolerance = 0.25;    // any single tap vs the point's
 
 // PQ(max(Y, 0) * reference_nits): the perceptual luminance of temporal_error.
 double perceptual_luminance(double Y, double reference_nits = kFlickerReferenceNits);
@@ -76,6 +79,25 @@ struct FlickerFrame {
 // The Gaussian low-pass of the luminance (channel 1 of XYZ) with σ in pixels,
 // truncated at 3σ, edges clamped: the adaptation luminance Y_a.
 std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px = kAdaptationSigmaPx);
+
+// Where each pixel of frame t was in frame t-1 (the renderer's motion image of
+// frame t and the distances of frame t-1's motion image): either masked, or
+// the four bilinear taps into the previous frame and their weights.
+struct Reprojected {
+  enum State : unsigned char { kValid, kBackground, kDisoccluded };
+  State state = kDisoccluded;
+  unsigned idx[4] = {0, 0, 0, 0};  // pixel indices into frame t-1
+  float weight[4] = {0, 0, 0, 0};
+  // The bilinear value of a per-pixel quantity of frame t-1 at this position.
+  double sample(const std::vector<float>& prev) const {
+    double v = 0.0;
+    for (int k = 0; k < 4; ++k) v += double(weight[k]) * prev[idx[k]];
+    return v;
+  }
+};
+// prev_distance: channel 2 of frame t-1's motion image (0 = no surface).
+std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>& prev_distance,
+                                   double tolerance = kDisocclusionTolerance);
 
 // Feed (test, reference, motion) frames in order; every frame after the first
 // yields a FlickerFrame. Test and reference are CIE XYZ (Y = 1 diffuse white).

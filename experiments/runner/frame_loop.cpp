@@ -85,7 +85,7 @@ void FrameLoop::run(const std::vector<RecordSink*>& sinks) {
         rec.reference = int(r);
         rec.name = m.plan.references[r].name;
         rec.frame = k;
-        const std::string key = m.plan.reference_key(int(r), k, in.uniforms);
+        const std::string key = m.plan.reference_key(int(r), in.uniforms);
         bool corrupt = false;
         std::optional<Image> img = m.cache.load(key, &corrupt);
         if (corrupt) {

@@ -37,8 +37,8 @@ struct RunPlan {
   // Hash of everything about a reference frame except its program and frame.
   std::string scene_key;
 
-  // The cache key of reference `r`'s frame `k` with frame uniforms `fu`.
-  std::string reference_key(int r, int k, const core::FrameUniforms& fu) const;
+  // The cache key of reference `r`'s frame with frame uniforms `fu`.
+  std::string reference_key(int r, const core::FrameUniforms& fu) const;
 };
 
 RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const metrics::ColorManager& cm,

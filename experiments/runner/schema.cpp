@@ -12,6 +12,7 @@ namespace {
 
 const std::map<std::string, std::string>& unit_table() {
   static const std::map<std::string, std::string> t = {
+      {"frame", "index in the camera path"},
       {"time_s", "s"},
       {"spp", "samples per pixel"},
       {"gpu_ms", "ms (GPU timestamps)"},
@@ -21,6 +22,7 @@ const std::map<std::string, std::string>& unit_table() {
       {"negative_px", "pixels"},
       {"nonfinite_pixels", "pixels (NaN or Inf)"},
       {"negative_pixels", "pixels (finite < 0)"},
+      {"reference_cached", "0/1"},
       {"deltaE2000", "ΔE00 (CIEDE2000)"},
       {"deltaEITP", "ΔE_ITP (BT.2124, Y = 1 at 100 cd/m²)"},
       {"flip", "FLIP error in [0, 1]"},
@@ -75,7 +77,7 @@ FrameSchema::FrameSchema(const std::vector<std::string>& metric_names, const std
   add("nonfinite_pixels", true, true);
   add("negative_pixels", true, true);
   for (const auto& m : metric_names) add(m, true, m.size() > 3 && m.compare(m.size() - 3, 3, "_px") == 0);
-  if (!metric_names.empty()) add("reference_cached", false, true);
+  if (!metric_names.empty()) add("reference_cached", false, true);  // 1: the reference frame came from the cache
 }
 
 double FrameSchema::value(const FrameRecord& r, const std::string& name) const {

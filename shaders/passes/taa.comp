@@ -8,8 +8,8 @@
 //   2. History is invalid (the pixel restarts from the current colour) in the
 //      first frame after a reset or camera cut, when q is off-screen, when the
 //      point was behind the previous camera, when the surface stored at q is not
-//      the reprojected point (distance mismatch: a disocclusion), or when the
-//      resampled history is not finite.
+//      the reprojected point (distance mismatch: a disocclusion; taps across a
+//      silhouette), or when the resampled history is not finite.
 //   3. Samples are mapped for HDR (TAA_HDR), then to the box space (TAA_SPACE);
 //      the history is rectified against the 3x3 neighbourhood (TAA_CLAMP).
 //   4. out = mix(history, current, alpha'), alpha' from TAA_FEEDBACK (and the
@@ -203,10 +203,23 @@ void main() {
   bool on_screen = all(greaterThanEqual(q, vec2(0.0))) && all(lessThanEqual(q, vec2(g_size))) && finite3(vec3(q, 0.0));
   if (!on_screen) valid = false;
   if (valid) {
-    ivec2 qi = ivec2(clamp(floor(q), vec2(0.0), vec2(g_size - 1)));
-    float stored = fetch(history_tex, qi).a;  // distance of the surface at q last frame (0 = sky)
-    if (mc.z > 0.0) valid = mc.w > 0.0 && stored > 0.0 && abs(stored - mc.w) <= tol * mc.w;
-    else valid = stored <= 0.0;  // sky now: sky then
+    // The distances stored with last frame's history (0 = sky), at the four
+    // bilinear taps around q: the same rule as the flicker metric's mask
+    // (metrics/flicker.h): the interpolated distance matches the point's own
+    // distance last frame, and no tap lies on another surface.
+    vec2 qq = q - 0.5;
+    vec2 f = qq - floor(qq);
+    ivec2 i0 = ivec2(floor(qq));
+    vec4 d = vec4(fetch(history_tex, i0).a, fetch(history_tex, i0 + ivec2(1, 0)).a,
+                  fetch(history_tex, i0 + ivec2(0, 1)).a, fetch(history_tex, i0 + ivec2(1, 1)).a);
+    vec4 wt = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    if (mc.z > 0.0) {
+      bvec4 off = greaterThan(abs(d - mc.w), vec4(5.0 * tol * mc.w));
+      bool tap_off = (off.x && wt.x > 0.0) || (off.y && wt.y > 0.0) || (off.z && wt.z > 0.0) || (off.w && wt.w > 0.0);
+      valid = mc.w > 0.0 && !tap_off && abs(dot(wt, d) - mc.w) <= tol * mc.w;
+    } else {
+      valid = dot(wt, d) <= 0.0;  // sky now: sky then
+    }
   }
   vec3 hist_lin = vec3(0.0);
   if (valid) {

@@ -1,0 +1,185 @@
+// TAA and flicker end to end through the runner (real Vulkan on lavapipe,
+// validation on): every TAA option compiles, runs and lands in frames.csv;
+// under a static camera TAA without rectification converges toward the
+// reference; and on orbits over glinting sand the flicker ratio ranks one
+// sample per pixel above 2x2 above 4x4 supersampling, all above the truth.
+#include "experiments/runner/runner.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace glintlab;
+using nlohmann::json;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("glintlab_taa_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Glinting sand on a wavy plane seen from the thesis' comparison camera. A
+// narrow field of view keeps the pixel footprint of the 640x360 default at a
+// fraction of its cost.
+json glint_scene(int w, int h, const json& path) {
+  return {{"resolution", {w, h}},
+          {"scene",
+           {{"mesh", {{"type", "wavy"}, {"size", 10}, {"tessellation", 64}, {"amplitude", 0.4}, {"wavelength", 5}}},
+            {"sky",
+             {{"turbidity", 3}, {"sky_intensity", 0.5}, {"sun_elevation_deg", 25}, {"sun_azimuth_deg", 30},
+              {"sun_intensity", 6}}}}},
+          {"camera_path", path},
+          {"material",
+           {{"preset", "thesis-hdri-match"}, {"noise_scale", 400}, {"glint_sigma", 0.002}, {"I_glints", {20, 20, 20}},
+            {"sigmoid_a", 2}, {"sigmoid_b", 6}}},
+          {"output", {{"exr", false}, {"png", false}, {"every", 1}}}};
+}
+
+json orbit(double deg_per_frame, int frames, double fov) {
+  return {{"type", "orbit"}, {"fps", 30},       {"frames", frames},       {"center", {0, 0, 0}},
+          {"radius", 3.6252}, {"height", 1.6905}, {"start_deg", 180}, {"end_deg", 180 + deg_per_frame * (frames - 1)},
+          {"fov", fov}};
+}
+
+json run(const json& experiment, const std::string& tag) {
+  fs::path dir = fresh_dir(tag);
+  std::ofstream(dir / "e.json") << experiment.dump(2);
+  RunOptions opt;
+  opt.experiment = (dir / "e.json").string();
+  opt.out_dir = (dir / "out").string();
+  opt.cache_dir = (dir / "cache").string();
+  opt.validation = true;
+  std::ostringstream log;
+  EXPECT_EQ(run_experiment(opt, log), 0) << log.str();  // 0 also means no validation message
+  std::ifstream in(dir / "out" / "summary.json");
+  json s = json::parse(in);
+  s["_csv"] = (dir / "out" / "frames.csv").string();
+  return s;
+}
+
+double metric(const json& summary, const std::string& variant, const std::string& name) {
+  for (const auto& v : summary["variants"])
+    if (v["name"] == variant) return v["metrics"][name]["mean"].get<double>();
+  ADD_FAILURE() << "no variant " << variant;
+  return NAN;
+}
+
+}  // namespace
+
+TEST(Taa, EveryOptionRunsAndAppearsInFramesCsv) {
+  json e = glint_scene(48, 27, orbit(1.0, 3, 40));
+  e["name"] = "taa-options";
+  e["reference"] = {{"grid", 2}};
+  e["metrics"] = {"deltaE2000"};
+  json variants = json::array({{{"name", "taa-default"}, {"aa", "taa"}}});
+  const std::map<std::string, std::vector<json>> options = {
+      {"jitter", {"none", "halton8", "halton16", "halton32", "r2"}},
+      {"clamp", {"none", "minmax", "clip", "variance"}},
+      {"space", {"rgb", "ycocg"}},
+      {"history_filter", {"bilinear", "catmull_rom"}},
+      {"velocity", {"center", "closest_depth", "longest"}},
+      {"feedback", {"fixed", "luma", "karis"}},
+      {"hdr", {"none", "inverse_luma", "tonemap"}},
+      {"anti_flicker", {true}},
+      {"alpha", {0.04}},
+      {"gamma", {1.25}}};
+  for (const auto& [key, values] : options)
+    for (const auto& v : values) {
+      std::string name = "taa-" + key + "-" + (v.is_string() ? v.get<std::string>() : v.dump());
+      for (char& c : name)
+        if (c == '.') c = 'p';
+      variants.push_back({{"name", name}, {"aa", "taa"}, {"taa", {{key, v}}}});
+    }
+  e["variants"] = variants;
+  json s = run(e, "options");
+  ASSERT_EQ(s["variants"].size(), variants.size());
+  for (const auto& v : s["variants"]) {
+    EXPECT_EQ(v["metrics"]["nonfinite_pixels"]["max"], 0) << v["name"];
+    EXPECT_EQ(v["metrics"]["negative_pixels"]["max"], 0) << v["name"];
+    EXPECT_TRUE(v["gpu_ms_per_pass"].contains("taa")) << v["name"];
+    EXPECT_TRUE(v["gpu_ms_per_pass"].contains("surface")) << v["name"];
+  }
+  // One row per variant and frame, with the TAA pass's own GPU time.
+  std::ifstream csv(s["_csv"].get<std::string>());
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_NE(header.find("gpu_ms_taa"), std::string::npos) << header;
+  std::map<std::string, int> rows;
+  while (std::getline(csv, line)) ++rows[line.substr(0, line.find(','))];
+  for (const auto& v : variants) EXPECT_EQ(rows[v["name"].get<std::string>()], 3) << v["name"];
+}
+
+TEST(Taa, StaticCameraConvergesTowardTheReference) {
+  // Static camera, 65 frames: TAA with no rectification and a small alpha
+  // averages its jittered samples. Stated factor: at frame 64 its CIEDE2000
+  // against the 16x16-sample truth is within 1.5x that of 4x4 supersampling
+  // (1.29x measured at this setting; an exponential moving average weighs the
+  // jitter positions of a cycle unevenly, so it stays above a uniform 4x4
+  // average) and below one centre sample.
+  json path = {{"type", "static"}, {"fps", 30},  {"frames", 65}, {"position", {-3.6252, 1.6905, 0.0}},
+               {"target", {0, 0, 0}}, {"fov", 40}};
+  json e = glint_scene(128, 72, path);
+  e["name"] = "static-convergence-test";
+  e["reference"] = {{"grid", 16}};
+  e["metrics"] = {"deltaE2000"};
+  e["variants"] = {{{"name", "no-aa"}},
+                   {{"name", "ssaa-4x4"}, {"aa", "ssaa"}, {"ssaa_grid", 4}},
+                   {{"name", "taa"}, {"aa", "taa"}, {"taa", {{"clamp", "none"}, {"alpha", 0.05}, {"feedback", "fixed"}}}}};
+  json s = run(e, "static");
+  std::ifstream csv(s["_csv"].get<std::string>());
+  std::string line;
+  std::getline(csv, line);
+  std::vector<std::string> header;
+  {
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) header.push_back(c);
+  }
+  const size_t col = size_t(std::find(header.begin(), header.end(), "deltaE2000") - header.begin());
+  std::map<std::pair<std::string, int>, double> de;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cells.push_back(c);
+    de[{cells[0], std::stoi(cells[1])}] = std::stod(cells[col]);
+  }
+  const double taa64 = de[{"taa", 64}], taa8 = de[{"taa", 8}], taa0 = de[{"taa", 0}];
+  const double ssaa = de[{"ssaa-4x4", 64}], none = de[{"no-aa", 64}];
+  std::printf("deltaE2000 at frame 64: taa %.4f (frame 8: %.4f), ssaa-4x4 %.4f, no-aa %.4f; ratio %.3f\n", taa64,
+              taa8, ssaa, none, taa64 / ssaa);
+  EXPECT_LT(taa64, 1.5 * ssaa);
+  EXPECT_LT(taa64, none);
+  EXPECT_LT(taa64, taa8);  // still converging
+  EXPECT_LT(taa8, taa0);
+}
+
+TEST(Taa, FlickerRatioRanksSupersamplingOnGlintingOrbitsAtTwoSpeeds) {
+  // The ordering a viewer sees: one sample per pixel flickers most, 4x4 least,
+  // all more than the truth (DESIGN "flicker"). At 0.5 and 1.5 degrees of orbit
+  // per frame (measured: 3.89 > 2.32 > 1.65 and 2.92 > 2.04 > 1.35).
+  for (double speed : {0.5, 1.5}) {
+    json e = glint_scene(160, 90, orbit(speed, 6, 10));
+    e["name"] = "glint-orbit-test";
+    e["reference"] = {{"grid", 16}};
+    e["metrics"] = {"deltaE2000"};
+    e["variants"] = {{{"name", "no-aa"}},
+                     {{"name", "ssaa-2x2"}, {"aa", "ssaa"}, {"ssaa_grid", 2}},
+                     {{"name", "ssaa-4x4"}, {"aa", "ssaa"}, {"ssaa_grid", 4}}};
+    json s = run(e, "orbit" + std::to_string(int(speed * 10)));
+    const double f1 = metric(s, "no-aa", "flicker_ratio"), f2 = metric(s, "ssaa-2x2", "flicker_ratio"),
+                 f4 = metric(s, "ssaa-4x4", "flicker_ratio");
+    std::printf("orbit %.1f deg/frame: flicker ratio no-aa %.3f, 2x2 %.3f, 4x4 %.3f\n", speed, f1, f2, f4);
+    EXPECT_GT(f1, f2) << speed;
+    EXPECT_GT(f2, f4) << speed;
+    EXPECT_GT(f4, 1.0) << speed;
+  }
+}
