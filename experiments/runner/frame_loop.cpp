@@ -4,6 +4,7 @@
 #include "experiments/runner/progress.h"
 #include "metrics/frame_metrics.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <sstream>
@@ -61,57 +62,64 @@ std::vector<std::string> FrameLoop::metric_names() const {
   return impl_->measure ? impl_->measure->names() : std::vector<std::string>{};
 }
 
-void FrameLoop::run(const std::vector<RecordSink*>& sinks) {
+void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& sinks) {
   Impl& m = *impl_;
   const ExperimentSpec& spec = *m.plan.spec;
   const int w = spec.width, h = spec.height;
-  Progress progress(m.log, spec.name, m.plan.frames * int(m.plan.variants.size()));
-  for (int k = 0; k < m.plan.frames; ++k) {
+  int total = 0;
+  for (const auto& v : work.render) total += int(std::count(v.begin(), v.end(), 1));
+  Progress progress(m.log, spec.name, total);
+  for (int k = 0; k <= work.last_frame; ++k) {
+    const size_t kk = size_t(k);
     const core::FrameCamera cam = spec.path.frame(k, w, h);
     core::FrameInputs in;
     in.frame = k;
     in.uniforms = frame_uniforms(spec, m.data, k);
     in.camera_cut = cam.cut;
+    const bool own_frame = k >= work.frame_begin && k < work.frame_end;
 
     // ---- motion vectors and references of frame k (shared by every variant)
     Image motion;
     std::vector<metrics::FrameMetrics::Reference> prepared(m.references.size());
     std::vector<bool> ref_cached(m.references.size(), false);
-    if (m.plan.measure) {
+    if (work.motion[kk]) {
       in.samples = core::samples_for(spec.path, k, w, h, {glm::vec2(0.0f)});
       motion = std::move(m.motion.graph->execute(in).images.at(m.motion.output));
-      for (size_t r = 0; r < m.references.size(); ++r) {
-        ReferenceRecord rec;
-        rec.reference = int(r);
-        rec.name = m.plan.references[r].name;
-        rec.frame = k;
-        const std::string key = m.plan.reference_key(int(r), in.uniforms);
-        bool corrupt = false;
-        std::optional<Image> img = m.cache.load(key, &corrupt);
-        if (corrupt) {
-          m.log << "warning: corrupt reference cache entry " << m.cache.path_of(key) << " removed; re-rendering\n";
-          rec.rebuilt = true;
-        }
-        if (img) {
-          rec.cached = true;
-        } else {
-          in.samples = core::samples_for(spec.path, k, w, h, reference_offsets(spec.reference.grid));
-          auto t0 = Clock::now();
-          core::FrameResult fr = m.references[r].graph->execute(in);
-          rec.wall_ms = ms_since(t0);
-          rec.gpu_ms = fr.gpu_ms;
-          img = std::move(fr.images.at(m.references[r].output));
-          m.cache.store(key, *img);
-        }
-        rec.image = &*img;
-        ref_cached[r] = rec.cached;
-        for (RecordSink* s : sinks) s->reference(rec);
-        prepared[r] = m.measure->prepare(*img);
+    }
+    for (size_t r = 0; r < m.references.size(); ++r) {
+      if (!work.reference[r][kk]) continue;
+      ReferenceRecord rec;
+      rec.reference = int(r);
+      rec.name = m.plan.references[r].name;
+      rec.frame = k;
+      const std::string key = m.plan.reference_key(int(r), in.uniforms);
+      bool corrupt = false;
+      std::optional<Image> img = m.cache.load(key, &corrupt);
+      if (corrupt) {
+        m.log << "warning: corrupt reference cache entry " << m.cache.path_of(key) << " removed; re-rendering\n";
+        rec.rebuilt = true;
       }
+      if (img) {
+        rec.cached = true;
+      } else {
+        in.samples = core::samples_for(spec.path, k, w, h, reference_offsets(spec.reference.grid));
+        auto t0 = Clock::now();
+        core::FrameResult fr = m.references[r].graph->execute(in);
+        rec.wall_ms = ms_since(t0);
+        rec.gpu_ms = fr.gpu_ms;
+        img = std::move(fr.images.at(m.references[r].output));
+        m.cache.store(key, *img);
+      }
+      rec.image = &*img;
+      ref_cached[r] = rec.cached;
+      if (own_frame)
+        for (RecordSink* s : sinks) s->reference(rec);
+      prepared[r] = m.measure->prepare(*img);
     }
 
-    // ---- every variant
+    // ---- every variant that has work at frame k
     for (size_t i = 0; i < m.plan.variants.size(); ++i) {
+      if (!work.render[i][kk]) continue;
       const RunPlan::Variant& pv = m.plan.variants[i];
       const std::vector<glm::vec2> offsets = variant_offsets(*pv.spec, k);
       in.samples = core::samples_for(spec.path, k, w, h, offsets);
@@ -131,20 +139,25 @@ void FrameLoop::run(const std::vector<RecordSink*>& sinks) {
       const Image& img = fr.images.at(m.variants[i].output);
       rec.image = &img;
       rec.scan = metrics::scan_pixels(img, 3);
-      if (!rec.scan.clean()) {
-        defects_ = true;
-        m.log << "\nwarning: " << pv.spec->name << " frame " << k << ": " << rec.scan.nan << " NaN, "
-              << rec.scan.infinite << " Inf, " << rec.scan.negative << " negative pixels\n";
-      }
-      if (m.plan.measure) {
-        if (cam.cut) m.trackers[i].reset();
+      if (work.measure[i][kk]) {
+        // The tracker compares with the previous frame: it restarts at a cut
+        // and where the previous frame was not measured.
+        if (cam.cut || k == 0 || !work.measure[i][kk - 1]) m.trackers[i].reset();
         rec.reference_cached = ref_cached[size_t(pv.reference)];
         rec.metrics = m.measure->measure(img, prepared[size_t(pv.reference)], motion, m.trackers[i],
                                          &rec.metric_cost_ms);
       }
-      for (RecordSink* s : sinks) s->frame(rec);
+      if (work.emit[i][kk]) {
+        if (!rec.scan.clean()) {
+          defects_ = true;
+          m.log << "\nwarning: " << pv.spec->name << " frame " << k << ": " << rec.scan.nan << " NaN, "
+                << rec.scan.infinite << " Inf, " << rec.scan.negative << " negative pixels\n";
+        }
+        for (RecordSink* s : sinks) s->frame(rec);
+      }
       std::ostringstream detail;
-      detail << pv.spec->name << " frame " << k << ", " << std::fixed << std::setprecision(1) << rec.wall_ms << " ms";
+      detail << pv.spec->name << " frame " << k << (work.emit[i][kk] ? "" : " (replay)") << ", " << std::fixed
+             << std::setprecision(1) << rec.wall_ms << " ms";
       progress.step(detail.str());
     }
   }

@@ -12,6 +12,7 @@
 #include "experiments/runner/records.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/variant_factory.h"
+#include "experiments/runner/work_schedule.h"
 #include "metrics/color/color_manager.h"
 
 #include <memory>
@@ -31,7 +32,8 @@ class FrameLoop {
   // Names of the per-frame metrics (empty when the run does not measure).
   std::vector<std::string> metric_names() const;
 
-  void run(const std::vector<RecordSink*>& sinks);
+  // Does the work of `schedule`, handing each emitted record to every sink.
+  void run(const WorkSchedule& schedule, const std::vector<RecordSink*>& sinks);
   // Whether any variant frame had NaN, Inf or negative pixels.
   bool defects() const { return defects_; }
 

@@ -188,26 +188,24 @@ ImageWriter::ImageWriter(fs::path dir, const RunPlan& plan, const metrics::Color
 void ImageWriter::save(const std::string& row, int frame, const Image& img, bool exr, bool png) {
   const OutputSpec& out = plan_.spec->output;
   if (frame % out.every != 0) return;
+  // The contact sheet is built from the PNGs on disk (so that resumed and
+  // merged runs have one too): the first columns of every row get a PNG.
+  const bool tile = out.contact_sheet && frame / out.every < out.contact_sheet_columns;
+  png = png || tile;
   const fs::path dir = dir_ / row;
   if (exr || png) fs::create_directories(dir);
   if (exr) metrics::write_exr(frame_path(dir, frame, "exr").string(), img, chroma_);
-  const bool tile = out.contact_sheet && (!sheet_.count(row) || int(sheet_[row].size()) < out.contact_sheet_columns);
-  if (!png && !tile) return;
+  if (!png) return;
   // Display-encoded through the OCIO display/view, opaque (alpha is coverage
-  // in the render, which a preview should not show as transparency); one
-  // transform serves the PNG and the sheet.
+  // in the render, which a preview should not show as transparency).
   Image shown = cm_.display(img, plan_.spec->working_space, out.display, out.view);
   if (shown.channels == 4)
     for (size_t i = 3; i < shown.data.size(); i += 4) shown.data[i] = 1.0f;
-  if (png) metrics::write_png(frame_path(dir, frame, "png").string(), shown);
-  if (tile) {
-    if (!sheet_.count(row)) sheet_order_.push_back(row);
-    sheet_[row].push_back({row + " f" + std::to_string(frame), std::move(shown)});
-  }
+  metrics::write_png(frame_path(dir, frame, "png").string(), shown);
 }
 
 void ImageWriter::reference(const ReferenceRecord& r) {
-  save(r.name, r.frame, *r.image, plan_.spec->output.exr, false);
+  save(r.name, r.frame, *r.image, plan_.spec->output.exr, plan_.spec->output.png);
 }
 
 void ImageWriter::frame(const FrameRecord& r) {
@@ -215,10 +213,23 @@ void ImageWriter::frame(const FrameRecord& r) {
 }
 
 void ImageWriter::finish() {
-  if (!plan_.spec->output.contact_sheet || sheet_order_.empty()) return;
-  std::vector<std::vector<SheetTile>> rows;
-  for (const auto& name : sheet_order_) rows.push_back(std::move(sheet_[name]));
-  metrics::write_png((dir_ / "contact_sheet.png").string(), make_contact_sheet(rows));
+  const OutputSpec& out = plan_.spec->output;
+  if (!out.contact_sheet) return;
+  std::vector<std::string> rows;
+  for (const auto& r : plan_.references) rows.push_back(r.name);
+  for (const auto& v : plan_.variants) rows.push_back(v.spec->name);
+  std::vector<std::vector<SheetTile>> sheet;
+  for (const auto& row : rows) {
+    std::vector<SheetTile> tiles;
+    for (int c = 0; c < out.contact_sheet_columns; ++c) {
+      const int frame = c * out.every;
+      const fs::path png = frame_path(dir_ / row, frame, "png");
+      if (frame >= plan_.frames || !fs::exists(png)) break;
+      tiles.push_back({row + " f" + std::to_string(frame), metrics::read_image(png.string())});
+    }
+    if (!tiles.empty()) sheet.push_back(std::move(tiles));
+  }
+  if (!sheet.empty()) metrics::write_png((dir_ / "contact_sheet.png").string(), make_contact_sheet(sheet));
 }
 
 }  // namespace glintlab

@@ -88,8 +88,6 @@ class ImageWriter final : public RecordSink {
   const RunPlan& plan_;
   const metrics::ColorManager& cm_;
   std::array<float, 8> chroma_;
-  std::vector<std::string> sheet_order_;
-  std::map<std::string, std::vector<SheetTile>> sheet_;
 };
 
 // {"mean", "p95", "max", "n"}; non-finite values are null (JSON has no

@@ -8,6 +8,8 @@
 #include "metrics/frame_metrics.h"
 #include "metrics/pixel_scan.h"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
@@ -39,6 +41,13 @@ struct FrameRecord {
   bool reference_cached = false;
   const Image* image = nullptr;           // scene-linear RGBA
 };
+
+// JSON of a record without its image (the journal's lines). Non-finite
+// numbers are written as strings ("nan", "inf", "-inf") so that they survive.
+nlohmann::json to_json(const FrameRecord& r);
+nlohmann::json to_json(const ReferenceRecord& r);
+FrameRecord frame_record_from_json(const nlohmann::json& j);
+ReferenceRecord reference_record_from_json(const nlohmann::json& j);
 
 class RecordSink {
  public:

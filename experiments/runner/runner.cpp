@@ -1,20 +1,27 @@
 #include "experiments/runner/runner.h"
 
 #include "core/render/scene_gpu.h"
+#include "core/util/content_hash.h"
 #include "core/util/json_check.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
 #include "experiments/runner/frame_loop.h"
+#include "experiments/runner/journal.h"
 #include "experiments/runner/output_writers.h"
 #include "experiments/runner/plan.h"
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/schema.h"
+#include "experiments/runner/version.h"
+#include "experiments/runner/work_schedule.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
+#include <set>
 
 namespace fs = std::filesystem;
 
@@ -45,17 +52,93 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
         << " ms/frame GPU at " << r["spp"] << " spp), " << r["frames_cached"] << " cached\n";
 }
 
+// The spec as this run uses it: the file, then the command line's overrides.
+ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& file, const nlohmann::json& overrides) {
+  ExperimentSpec spec = ExperimentSpec::from_json(source, file);
+  if (overrides.contains("resolution")) {
+    spec.width = overrides["resolution"][0].get<int>();
+    spec.height = overrides["resolution"][1].get<int>();
+  }
+  if (overrides.contains("frames")) spec.frames = std::min(spec.frames, overrides["frames"].get<int>());
+  if (overrides.contains("variants")) {
+    std::vector<VariantSpec> chosen;
+    for (const auto& name : overrides["variants"]) {
+      auto it = std::find_if(spec.variants.begin(), spec.variants.end(),
+                             [&](const VariantSpec& v) { return v.name == name.get<std::string>(); });
+      if (it == spec.variants.end()) {
+        std::string all;
+        for (const auto& v : spec.variants) all += (all.empty() ? "" : ", ") + v.name;
+        throw ConfigError(file + ": --variants: no variant named " + name.dump() + "; the experiment has " + all);
+      }
+      chosen.push_back(*it);
+    }
+    spec.variants = std::move(chosen);
+  }
+  return spec;
+}
+
+// Collects what the journal holds for the schema: metric names (in order) and pass names (first seen).
+struct RecordNames final : RecordSink {
+  std::vector<std::string> metrics, passes;
+  void frame(const FrameRecord& r) override {
+    if (metrics.empty())
+      for (const auto& [n, v] : r.metrics) metrics.push_back(n);
+    for (const auto& t : r.passes)
+      if (std::find(passes.begin(), passes.end(), t.pass) == passes.end()) passes.push_back(t.pass);
+  }
+};
+
+struct DefectCount final : RecordSink {
+  size_t frames = 0;
+  void frame(const FrameRecord& r) override { frames += !r.scan.clean(); }
+};
+
+// frames.csv, summary.json, the contact sheet and the report, all from the journals.
+nlohmann::json write_outputs(const fs::path& dir, const RunPlan& plan, const std::vector<const Journal*>& journals,
+                             const RunInfo& info, ImageWriter& images, bool report, std::ostream& log) {
+  RecordNames names;
+  for (const Journal* j : journals) j->replay(names);
+  const FrameSchema schema(names.metrics, names.passes);
+  CsvWriter csv(dir / "frames.csv", schema);
+  SummaryWriter summary(dir / "summary.json", plan, schema, info);
+  for (const Journal* j : journals) {
+    j->replay(csv);
+    j->replay(summary);
+  }
+  csv.finish();
+  summary.finish();
+  images.finish();
+  log << "wrote " << (dir / "frames.csv").string() << ", " << (dir / "summary.json").string()
+      << (plan.spec->output.contact_sheet ? " and " + (dir / "contact_sheet.png").string() : std::string()) << "\n";
+  (void)report;  // the report is written by experiments/report when it is built in
+  return summary.summary();
+}
+
 }  // namespace
 
 int run_experiment(const RunOptions& opt, std::ostream& log) {
+  // ---- the experiment and this invocation's share of it
+  nlohmann::json source, overrides = nlohmann::json::object();
+  std::string file;
   ExperimentSpec spec;
   try {
-    spec = ExperimentSpec::load(resolve_experiment_path(opt.experiment));
+    file = resolve_experiment_path(opt.experiment);
+    source = read_json_file(file);
+    if (opt.width > 0 || opt.height > 0) {
+      if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
+        throw ConfigError("--resolution: " + std::to_string(opt.width) + "x" + std::to_string(opt.height) +
+                          " is outside 1x1 ... 16384x16384");
+      overrides["resolution"] = {opt.width, opt.height};
+    }
+    if (opt.max_frames > 0) overrides["frames"] = opt.max_frames;
+    if (!opt.variants.empty()) overrides["variants"] = opt.variants;
+    if (opt.shard_count < 1 || opt.shard_index < 0 || opt.shard_index >= opt.shard_count)
+      throw ConfigError("--shard: expected k/n with 1 <= k <= n");
+    spec = effective_spec(source, file, overrides);
   } catch (const ConfigError& e) {
     log << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
-  const int frames = opt.max_frames > 0 ? std::min(opt.max_frames, spec.frames) : spec.frames;
   const bool measure = opt.measure && spec.reference.enabled;
   if (opt.measure && !spec.reference.enabled)
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";
@@ -64,31 +147,58 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   const fs::path out_dir(opt.out_dir);
   fs::create_directories(out_dir);
 
-  // ---- the scene, built once; the plan; the renderer
+  // ---- the journal: what this folder already holds, and what it is a run of
+  const nlohmann::json header = {{"type", "run"},
+                                 {"glintlab_version", version()},
+                                 {"command", measure ? "run" : "render"},
+                                 {"file", file},
+                                 {"source", source},
+                                 {"content_hash", core::hash_hex(source.dump())},
+                                 {"overrides", overrides},
+                                 {"shard", {opt.shard_index, opt.shard_count}}};
+  std::unique_ptr<Journal> journal;
+  try {
+    journal = std::make_unique<Journal>(out_dir, header, opt.resume);
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (journal->dropped_lines() > 0)
+    log << "note: dropped " << journal->dropped_lines() << " incomplete line(s) of the journal (a killed run)\n";
+
+  // ---- the scene, built once; the plan; the work; the renderer
   SceneData data = build_scene(spec, cm);
   core::VkContext ctx(core::ContextOptions{opt.device, opt.validation});
   log << "device: " << ctx.info().name << " (" << ctx.info().type << ", Vulkan " << ctx.info().api_version << ")\n";
-  core::SceneGpu scene(ctx, data.mesh, data.env_texture);
-  const RunPlan plan = make_plan(spec, frames, measure, cm, data, ctx.info().name);
-  ReferenceCache cache(opt.cache_dir.empty() ? std::string(GLINTLAB_RESULTS_DIR "/cache/reference") : opt.cache_dir);
-  FrameLoop loop(ctx, scene, plan, data, cm, cache, log);
+  const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name);
+  const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);
+  const WorkSchedule work = schedule_work(plan, *journal, begin, end);
+  if (opt.shard_count > 1)
+    log << "shard " << opt.shard_index + 1 << "/" << opt.shard_count << ": frames " << begin << " to " << end - 1
+        << "\n";
+  if (opt.resume)
+    log << "resume: " << journal->frames().size() << " frame record(s) done, " << work.emitted_frames()
+        << " to go\n";
 
-  // ---- the consumers of its records
-  const FrameSchema schema(loop.metric_names(), loop.pass_names());
-  CsvWriter csv(out_dir / "frames.csv", schema);
-  SummaryWriter summary(out_dir / "summary.json", plan, schema, RunInfo{ctx.info().name, cm.config_path(), 1});
   ImageWriter images(out_dir, plan, cm);
-  const std::vector<RecordSink*> sinks = {&csv, &summary, &images};
+  if (work.last_frame >= 0) {
+    core::SceneGpu scene(ctx, data.mesh, data.env_texture);
+    ReferenceCache cache(opt.cache_dir.empty() ? std::string(GLINTLAB_RESULTS_DIR "/cache/reference")
+                                               : opt.cache_dir);
+    FrameLoop loop(ctx, scene, plan, data, cm, cache, log);
+    loop.run(work, {journal.get(), &images});
+  }
 
-  loop.run(sinks);
-  for (RecordSink* s : sinks) s->finish();
-
-  log << "wrote " << (out_dir / "frames.csv").string() << ", " << (out_dir / "summary.json").string()
-      << (spec.output.contact_sheet ? " and " + (out_dir / "contact_sheet.png").string() : std::string()) << "\n";
-  print_table(log, summary.summary());
+  // ---- outputs, from the journal
+  const nlohmann::json summary =
+      write_outputs(out_dir, plan, {journal.get()}, RunInfo{ctx.info().name, cm.config_path(), 1}, images,
+                    opt.report, log);
+  print_table(log, summary);
   int status = kExitOk;
-  if (loop.defects()) {
-    log << "error: some frames had NaN, Inf or negative pixels (see frames.csv)\n";
+  DefectCount defects;
+  journal->replay(defects);
+  if (defects.frames > 0) {
+    log << "error: " << defects.frames << " frame(s) had NaN, Inf or negative pixels (see frames.csv)\n";
     status = kExitDefect;
   }
   if (ctx.validation_enabled() && ctx.validation_message_count() > 0) {
@@ -96,6 +206,92 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     status = kExitDefect;
   }
   return status;
+}
+
+int merge_runs(const std::vector<std::string>& dirs, const std::string& out, bool report, std::ostream& log) {
+  if (dirs.empty()) {
+    log << "error: merge: name the shard folders to join\n";
+    return kExitBadInput;
+  }
+  std::vector<Journal> journals;
+  try {
+    for (const auto& d : dirs) journals.push_back(Journal::load(d));
+  } catch (const ConfigError& e) {
+    log << "error: merge: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  // One run: the same experiment, options and shard count; every shard once.
+  nlohmann::json first = journals[0].header();
+  const int count = first["shard"][1].get<int>();
+  std::set<int> seen;
+  for (size_t i = 0; i < journals.size(); ++i) {
+    nlohmann::json h = journals[i].header();
+    const int k = h["shard"][0].get<int>();
+    if (h["shard"][1] != count) {
+      log << "error: merge: " << dirs[i] << " is a shard of " << h["shard"][1] << ", " << dirs[0] << " of " << count
+          << "\n";
+      return kExitBadInput;
+    }
+    h["shard"] = first["shard"];
+    if (h != first) {
+      log << "error: merge: " << dirs[i] << " is a run of another experiment or with other options than " << dirs[0]
+          << "\n";
+      return kExitBadInput;
+    }
+    if (!seen.insert(k).second) {
+      log << "error: merge: shard " << k + 1 << "/" << count << " is given twice (" << dirs[i] << ")\n";
+      return kExitBadInput;
+    }
+  }
+  if (int(seen.size()) != count) {
+    std::string missing;
+    for (int k = 0; k < count; ++k)
+      if (!seen.count(k)) missing += (missing.empty() ? "" : ", ") + std::to_string(k + 1) + "/" + std::to_string(count);
+    log << "error: merge: shard(s) " << missing << " missing\n";
+    return kExitBadInput;
+  }
+  ExperimentSpec spec;
+  try {
+    spec = effective_spec(first["source"], first["file"].get<std::string>(), first["overrides"]);
+  } catch (const ConfigError& e) {
+    log << "error: merge: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  metrics::ColorManager cm;
+  const SceneData data = build_scene(spec, cm);
+  const RunPlan plan = make_plan(spec, spec.frames, first["command"] == "run" && spec.reference.enabled, cm, data, "");
+  // Every frame of every variant exactly once.
+  for (size_t v = 0; v < plan.variants.size(); ++v)
+    for (int k = 0; k < plan.frames; ++k) {
+      int n = 0;
+      for (const Journal& j : journals) n += j.has_frame(int(v), k);
+      if (n != 1) {
+        log << "error: merge: " << plan.variants[v].spec->name << " frame " << k << " is recorded " << n
+            << " times (an unfinished shard? resume it first)\n";
+        return kExitBadInput;
+      }
+    }
+  const fs::path out_dir(out);
+  fs::create_directories(out_dir);
+  // Images: each shard's folders are copied over (every file once).
+  for (const auto& d : dirs)
+    for (const auto& e : fs::directory_iterator(d))
+      if (e.is_directory())
+        fs::copy(e.path(), out_dir / e.path().filename(),
+                 fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  std::vector<const Journal*> js;
+  for (const Journal& j : journals) js.push_back(&j);
+  ImageWriter images(out_dir, plan, cm);
+  std::string device;
+  try {  // the shards ran on one kind of device; their summaries name it
+    std::ifstream in(fs::path(dirs[0]) / "summary.json");
+    device = nlohmann::json::parse(in).value("device", "");
+  } catch (const std::exception&) {
+  }
+  const nlohmann::json summary =
+      write_outputs(out_dir, plan, js, RunInfo{device, cm.config_path(), 1}, images, report, log);
+  print_table(log, summary);
+  return kExitOk;
 }
 
 }  // namespace glintlab

@@ -1,10 +1,13 @@
-// Runs an experiment: builds the scene once, renders every variant's frames
-// (and, for `run`, the cached ground-truth reference), measures every frame
-// and writes frames.csv, summary.json and the requested images.
+// Runs an experiment: builds the scene once, plans the variants and their
+// references, renders and measures the frames this invocation owns (all of
+// them, a --shard, or what a --resume still lacks), journals every record as
+// it finishes (experiments/runner/journal.h) and writes frames.csv,
+// summary.json, images and the report from the journal.
 #pragma once
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace glintlab {
 
@@ -16,7 +19,12 @@ struct RunOptions {
   std::string cache_dir;      // "" = results/cache in the source tree
   bool measure = true;        // false: `render` (no reference, no metrics)
   bool validation = false;    // Vulkan validation layers (tests, CI)
-  int max_frames = 0;         // > 0: render only the first n frames
+  int max_frames = 0;         // > 0: only the first n frames
+  std::vector<std::string> variants;  // non-empty: only these variants, in this order
+  int width = 0, height = 0;          // > 0: override the experiment's resolution
+  int shard_index = 0, shard_count = 1;  // --shard k/n (k counted from 1 on the command line)
+  bool resume = false;        // continue the run in out_dir (journal) instead of starting over
+  bool report = true;         // write report.html at the end
 };
 
 // Returns the process exit code (experiments/cli/exit_codes.h): 0 ok, 1 a
@@ -24,5 +32,11 @@ struct RunOptions {
 // (the run still completes and reports them), 2 bad input. Device and I/O
 // failures throw (core::VulkanError, IoError).
 int run_experiment(const RunOptions& options, std::ostream& log);
+
+// `glintlab merge DIR... --out DIR`: joins the journals of the shards of one
+// run into frames.csv, summary.json, images and the report, identical in
+// metrics to a single run. Exit 2 when the shards are not of one run, are
+// missing or overlap.
+int merge_runs(const std::vector<std::string>& shard_dirs, const std::string& out_dir, bool report, std::ostream& log);
 
 }  // namespace glintlab

@@ -1,0 +1,133 @@
+#include "experiments/runner/journal.h"
+
+#include "core/util/atomic_file.h"
+#include "core/util/io_error.h"
+#include "core/util/json_check.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <unistd.h>
+#include <utility>
+
+namespace fs = std::filesystem;
+
+namespace glintlab {
+
+namespace {
+constexpr const char* kJournal = "records.jsonl";
+}
+
+Journal::Journal(const fs::path& dir, const nlohmann::json& header, bool resume) : path_(dir / kJournal) {
+  std::string kept;
+  if (resume && fs::exists(path_)) {
+    read(path_);
+    if (header_ != header) {
+      std::string what;
+      for (auto it = header.begin(); it != header.end(); ++it)
+        if (!header_.contains(it.key()) || header_[it.key()] != it.value())
+          what += (what.empty() ? "" : ", ") + it.key();
+      throw ConfigError(path_.string() + ": --resume: this folder holds a run with other settings (" + what +
+                        " differ); resume with the same experiment and options, or use a new --out");
+    }
+    // Rewrite without a torn last line, so appends continue a clean file.
+    std::string text = header_.dump() + "\n";
+    for (const auto& r : references_) text += to_json(r).dump() + "\n";
+    for (const auto& [key, r] : frames_) text += to_json(r).dump() + "\n";
+    write_text_atomic(path_, text);
+  } else {
+    header_ = header;
+    write_text_atomic(path_, header_.dump() + "\n");
+  }
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd_ < 0) throw IoError(path_.string() + ": cannot open for appending (" + std::strerror(errno) + ")");
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Journal::Journal(Journal&& o) noexcept
+    : path_(std::move(o.path_)), fd_(std::exchange(o.fd_, -1)), header_(std::move(o.header_)),
+      frames_(std::move(o.frames_)), references_(std::move(o.references_)),
+      reference_keys_(std::move(o.reference_keys_)), dropped_(o.dropped_) {}
+
+Journal Journal::load(const fs::path& dir) {
+  Journal j;
+  j.path_ = dir / kJournal;
+  if (!fs::exists(j.path_))
+    throw ConfigError(j.path_.string() + ": no journal here (is " + dir.string() + " the --out of a glintlab run?)");
+  j.read(j.path_);
+  return j;
+}
+
+void Journal::read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool first = true;
+  while (std::getline(in, line)) {
+    const bool complete = !in.eof();  // a line without its newline was being written when the run stopped
+    nlohmann::json j;
+    try {
+      if (!complete) throw std::invalid_argument("torn line");
+      j = nlohmann::json::parse(line);
+    } catch (const std::exception&) {
+      ++dropped_;
+      continue;
+    }
+    if (first) {
+      first = false;
+      if (!j.is_object() || j.value("type", "") != "run")
+        throw ConfigError(path.string() + ": line 1 is not a glintlab run header");
+      header_ = j;
+      continue;
+    }
+    try {
+      if (j.at("type") == "frame") {
+        FrameRecord r = frame_record_from_json(j);
+        frames_.emplace(std::make_pair(r.variant, r.frame), std::move(r));  // the first copy wins
+      } else if (j.at("type") == "reference") {
+        ReferenceRecord r = reference_record_from_json(j);
+        if (reference_keys_.insert({r.reference, r.frame}).second) references_.push_back(r);
+      }
+    } catch (const std::exception&) {
+      ++dropped_;
+    }
+  }
+  if (first) throw ConfigError(path.string() + ": empty journal (no run header)");
+}
+
+void Journal::append(const nlohmann::json& line) {
+  const std::string text = line.dump() + "\n";
+  size_t done = 0;
+  while (done < text.size()) {
+    ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw IoError(path_.string() + ": cannot append (" + std::strerror(errno) + ")");
+    done += size_t(n);
+  }
+  if (::fsync(fd_) != 0) throw IoError(path_.string() + ": cannot flush (" + std::strerror(errno) + ")");
+}
+
+void Journal::reference(const ReferenceRecord& r) {
+  if (!reference_keys_.insert({r.reference, r.frame}).second) return;
+  references_.push_back(r);
+  references_.back().image = nullptr;
+  append(to_json(r));
+}
+
+void Journal::frame(const FrameRecord& r) {
+  if (has_frame(r.variant, r.frame)) return;
+  FrameRecord stored = r;
+  stored.image = nullptr;
+  frames_.emplace(std::make_pair(r.variant, r.frame), stored);
+  append(to_json(r));
+}
+
+void Journal::replay(RecordSink& sink) const {
+  for (const auto& r : references_) sink.reference(r);
+  for (const auto& [key, r] : frames_) sink.frame(r);
+}
+
+}  // namespace glintlab

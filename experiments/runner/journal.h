@@ -1,0 +1,69 @@
+// The journal of a run: DIR/records.jsonl, one JSON line per finished
+// record, appended and flushed to disk (fsync) as soon as the record exists.
+// It is what makes a run resumable and shardable:
+//   - line 1 is the run's header (experiment, its content hash, the options
+//     that change results, the shard); a resume checks it matches;
+//   - a run killed at any moment (SIGKILL included) leaves complete lines and
+//     at most one torn last line, which is dropped when the journal is opened
+//     again (the file is rewritten without it, atomically);
+//   - frames.csv and summary.json are always written from the journal, so a
+//     resumed run, a merged set of shards and an uninterrupted run produce the
+//     same rows and the same metrics; a (variant, frame) is recorded once.
+#pragma once
+
+#include "experiments/runner/records.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace glintlab {
+
+class Journal final : public RecordSink {
+ public:
+  // Opens DIR/records.jsonl. resume = false: a new journal with `header`
+  // (an existing one is replaced). resume = true: the existing journal is
+  // loaded; its header must equal `header` (ConfigError naming what differs);
+  // a missing journal starts a new one.
+  Journal(const std::filesystem::path& dir, const nlohmann::json& header, bool resume);
+  ~Journal() override;
+  Journal(Journal&& o) noexcept;
+  Journal& operator=(Journal&&) = delete;
+
+  // Loads a journal read-only (merge). Throws ConfigError for a missing file
+  // or header.
+  static Journal load(const std::filesystem::path& dir);
+
+  const nlohmann::json& header() const { return header_; }
+  bool has_frame(int variant, int frame) const { return frames_.count({variant, frame}) != 0; }
+  const std::map<std::pair<int, int>, FrameRecord>& frames() const { return frames_; }
+  const std::vector<ReferenceRecord>& references() const { return references_; }
+  size_t dropped_lines() const { return dropped_; }
+
+  void reference(const ReferenceRecord& r) override;
+  void frame(const FrameRecord& r) override;
+
+  // Hands every stored record to `sink` (references first, then frames by
+  // variant and frame).
+  void replay(RecordSink& sink) const;
+
+ private:
+  Journal() = default;
+  void read(const std::filesystem::path& path);
+  void append(const nlohmann::json& line);
+
+  std::filesystem::path path_;
+  int fd_ = -1;
+  nlohmann::json header_;
+  std::map<std::pair<int, int>, FrameRecord> frames_;
+  std::vector<ReferenceRecord> references_;
+  std::set<std::pair<int, int>> reference_keys_;
+  size_t dropped_ = 0;
+};
+
+}  // namespace glintlab

@@ -1,0 +1,99 @@
+#include "experiments/runner/records.h"
+
+#include <cmath>
+#include <limits>
+
+namespace glintlab {
+
+namespace {
+
+nlohmann::json number(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return x;
+}
+
+double number(const nlohmann::json& j) {
+  if (j.is_number()) return j.get<double>();
+  const std::string s = j.get<std::string>();
+  if (s == "inf") return std::numeric_limits<double>::infinity();
+  if (s == "-inf") return -std::numeric_limits<double>::infinity();
+  if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
+  throw std::invalid_argument("journal: \"" + s + "\" is not a number");
+}
+
+nlohmann::json values(const metrics::NamedValues& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& [n, x] : v) a.push_back({n, number(x)});
+  return a;
+}
+
+metrics::NamedValues values(const nlohmann::json& a) {
+  metrics::NamedValues v;
+  for (const auto& e : a) v.emplace_back(e.at(0).get<std::string>(), number(e.at(1)));
+  return v;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const FrameRecord& r) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& t : r.passes) passes.push_back({t.pass, number(t.gpu_ms)});
+  return {{"type", "frame"},
+          {"variant", r.variant},
+          {"name", r.name},
+          {"frame", r.frame},
+          {"time_s", number(r.time_s)},
+          {"sequence_start", r.sequence_start},
+          {"spp", r.spp},
+          {"gpu_ms", number(r.gpu_ms)},
+          {"passes", passes},
+          {"wall_ms", number(r.wall_ms)},
+          {"scan", {r.scan.pixels, r.scan.nan, r.scan.pos_inf, r.scan.neg_inf, r.scan.infinite, r.scan.negative}},
+          {"metrics", values(r.metrics)},
+          {"metric_cost_ms", values(r.metric_cost_ms)},
+          {"reference_cached", r.reference_cached}};
+}
+
+nlohmann::json to_json(const ReferenceRecord& r) {
+  return {{"type", "reference"}, {"reference", r.reference}, {"name", r.name},       {"frame", r.frame},
+          {"cached", r.cached},  {"rebuilt", r.rebuilt},     {"gpu_ms", number(r.gpu_ms)}, {"wall_ms", number(r.wall_ms)}};
+}
+
+FrameRecord frame_record_from_json(const nlohmann::json& j) {
+  FrameRecord r;
+  r.variant = j.at("variant").get<int>();
+  r.name = j.at("name").get<std::string>();
+  r.frame = j.at("frame").get<int>();
+  r.time_s = number(j.at("time_s"));
+  r.sequence_start = j.at("sequence_start").get<bool>();
+  r.spp = j.at("spp").get<int>();
+  r.gpu_ms = number(j.at("gpu_ms"));
+  for (const auto& p : j.at("passes")) r.passes.push_back({p.at(0).get<std::string>(), number(p.at(1))});
+  r.wall_ms = number(j.at("wall_ms"));
+  const auto& s = j.at("scan");
+  r.scan.pixels = s.at(0).get<size_t>();
+  r.scan.nan = s.at(1).get<size_t>();
+  r.scan.pos_inf = s.at(2).get<size_t>();
+  r.scan.neg_inf = s.at(3).get<size_t>();
+  r.scan.infinite = s.at(4).get<size_t>();
+  r.scan.negative = s.at(5).get<size_t>();
+  r.metrics = values(j.at("metrics"));
+  r.metric_cost_ms = values(j.at("metric_cost_ms"));
+  r.reference_cached = j.at("reference_cached").get<bool>();
+  return r;
+}
+
+ReferenceRecord reference_record_from_json(const nlohmann::json& j) {
+  ReferenceRecord r;
+  r.reference = j.at("reference").get<int>();
+  r.name = j.at("name").get<std::string>();
+  r.frame = j.at("frame").get<int>();
+  r.cached = j.at("cached").get<bool>();
+  r.rebuilt = j.at("rebuilt").get<bool>();
+  r.gpu_ms = number(j.at("gpu_ms"));
+  r.wall_ms = number(j.at("wall_ms"));
+  return r;
+}
+
+}  // namespace glintlab
