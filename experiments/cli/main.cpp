@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   glintlab::add_run_commands(app, exit_code);
   glintlab::add_compare_command(app, exit_code);
   glintlab::add_list_command(app, exit_code);
+  glintlab::add_check_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

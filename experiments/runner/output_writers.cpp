@@ -196,9 +196,16 @@ void ImageWriter::save(const std::string& row, int frame, const Image& img, bool
   if (exr || png) fs::create_directories(dir);
   if (exr) metrics::write_exr(frame_path(dir, frame, "exr").string(), img, chroma_);
   if (!png) return;
-  // Display-encoded through the OCIO display/view, opaque (alpha is coverage
-  // in the render, which a preview should not show as transparency).
-  Image shown = cm_.display(img, plan_.spec->working_space, out.display, out.view);
+  // Display-encoded through the OCIO display/view after the exposure, opaque
+  // (alpha is coverage in the render, which a preview should not show as
+  // transparency).
+  Image exposed = img;
+  if (out.exposure != 0.0) {
+    const float gain = float(std::exp2(out.exposure));
+    for (size_t i = 0; i < exposed.data.size(); ++i)
+      if (exposed.channels < 4 || i % size_t(exposed.channels) != 3) exposed.data[i] *= gain;
+  }
+  Image shown = cm_.display(exposed, plan_.spec->working_space, out.display, out.view);
   if (shown.channels == 4)
     for (size_t i = 3; i < shown.data.size(); i += 4) shown.data[i] = 1.0f;
   metrics::write_png(frame_path(dir, frame, "png").string(), shown);

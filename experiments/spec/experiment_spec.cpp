@@ -170,7 +170,8 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     s.output.png = out->get_bool("png", true);
     s.output.every = out->get_int("every", 1, 1, 1000000);
     s.output.display = out->get_string("display", "sRGB");
-    s.output.view = out->get_string("view", "Standard");
+    s.output.view = out->get_string("view", s.output.view);
+    s.output.exposure = out->get_number("exposure", 0.0, -20.0, 20.0);
     s.output.contact_sheet = out->get_bool("contact_sheet", false);
     s.output.contact_sheet_columns = out->get_int("contact_sheet_columns", 8, 1, 64);
     out->finish();

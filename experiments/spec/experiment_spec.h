@@ -19,7 +19,8 @@
 //   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],
 //   "metric_options": {"view": "" | "sRGB/Standard",  // "" = scene-referred per-pixel metrics
 //                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67.0206},
-//   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "Standard",
+//   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "ACES 1.0 SDR-video",
+//              "exposure": 0 (stops, previews only),
 //              "contact_sheet": false, "contact_sheet_columns": 8}
 // }
 #pragma once
@@ -70,7 +71,8 @@ struct OutputSpec {
   bool png = true;
   int every = 1;  // save images of every n-th frame (metrics are computed for all)
   std::string display = "sRGB";
-  std::string view = "Standard";
+  std::string view = "ACES 1.0 SDR-video";  // previews: a filmic tone curve (highlights roll off, glints stay visible)
+  double exposure = 0.0;                   // stops applied to the scene-linear image before the view (previews only)
   bool contact_sheet = false;  // DIR/contact_sheet.png: rows = variants (+ reference), columns = saved frames
   int contact_sheet_columns = 8;  // at most this many saved frames per row
 };

@@ -1,0 +1,53 @@
+// `glintlab check SUMMARY BASELINE [--tolerance metric=x ...]`: the
+// regression gate. Compares the per-variant metric means of a run's
+// summary.json with a committed baseline (results/baselines/*.json, a
+// summary.json of the same experiment) and fails when one got worse by more
+// than its tolerance.
+//
+// "Worse" per metric: larger for errors (deltaE2000, flip, temporal_error,
+// temporal_error_mc, pooled_error, deltaEITP, relative, glint_hist_emd_oct);
+// farther from 1 for flicker_ratio and frame_diff_ratio, measured as
+// |log(ratio)|; smaller for psnr; any increase of nonfinite_pixels or
+// negative_pixels (tolerance 0). A variant or metric of the baseline that the
+// summary lacks is a regression too; a metric that is null (not finite) in the
+// summary but finite in the baseline is one.
+//
+// Tolerance of a metric: the worsening allowed, relative to the baseline
+// value (|log| for ratios: 0.05 allows a 5 % move away from 1). The defaults
+// (kDefaultTolerances) are set from the spread of the CI regression
+// experiment between repeated runs and lavapipe thread counts (README,
+// "Regression check"); --tolerance metric=x overrides one.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace glintlab {
+
+struct CheckRow {
+  std::string variant, metric;
+  double baseline = 0, current = 0;
+  double change = 0;      // worsening in the metric's own sense (> 0 worse), relative or |log|
+  double tolerance = 0;
+  bool regression = false;
+  std::string note;       // why, when it is not a number comparison
+};
+
+// Default tolerances by metric (see above).
+const std::map<std::string, double>& default_check_tolerances();
+
+// Compares `summary` with `baseline`. Only metrics with a tolerance (default
+// or given) are checked. Throws std::invalid_argument when either is not a
+// glintlab summary or the experiments differ.
+std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohmann::json& baseline,
+                                    const std::map<std::string, double>& tolerances);
+
+// The CLI: prints a table to `out`; 0 no regression, 1 a regression, 2 bad input.
+int run_check(const std::string& summary_path, const std::string& baseline_path,
+              const std::vector<std::string>& tolerance_args, std::ostream& out, std::ostream& err);
+
+}  // namespace glintlab
