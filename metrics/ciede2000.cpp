@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/parallel.h"
+
 #include "metrics/error_metrics.h"
 
 namespace glintlab::metrics {
@@ -81,11 +83,11 @@ double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double 
 Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz) {
   require_same_size(test_xyz, ref_xyz, "ciede2000_map");
   Image m(test_xyz.width, test_xyz.height, 1);
-  for (std::size_t i = 0; i < m.pixel_count(); ++i) {
+  parallel_for(long(m.pixel_count()), [&](long i) {
     const float* t = test_xyz.data.data() + i * test_xyz.channels;
     const float* r = ref_xyz.data.data() + i * ref_xyz.channels;
     m.data[i] = float(ciede2000(xyz_to_lab(t[0], t[1], t[2]), xyz_to_lab(r[0], r[1], r[2])));
-  }
+  });
   return m;
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+
+#include "metrics/parallel.h"
 #include <stdexcept>
 #include <string>
 
@@ -106,12 +108,12 @@ Image delta_e_itp_map(const Image& test_xyz, const Image& ref_xyz, double lumina
     throw std::invalid_argument("delta_e_itp_map: luminance_nits (cd/m^2 for Y = 1) must be finite and > 0, got " +
                                 std::to_string(luminance_nits));
   Image m(test_xyz.width, test_xyz.height, 1);
-  for (std::size_t i = 0; i < m.pixel_count(); ++i) {
+  parallel_for(long(m.pixel_count()), [&](long i) {
     const float* t = test_xyz.data.data() + i * test_xyz.channels;
     const float* r = ref_xyz.data.data() + i * ref_xyz.channels;
     m.data[i] = float(delta_e_itp(xyz_to_ictcp(t[0], t[1], t[2], luminance_nits),
                                   xyz_to_ictcp(r[0], r[1], r[2], luminance_nits)));
-  }
+  });
   return m;
 }
 

@@ -8,6 +8,7 @@
 
 #include "metrics/delta_e_itp.h"
 #include "metrics/error_metrics.h"
+#include "metrics/parallel.h"
 
 namespace glintlab::metrics {
 
@@ -30,18 +31,20 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   for (int i = -r; i <= r; ++i) sum += k[size_t(i + r)] = std::exp(-0.5 * double(i * i) / (sigma_px * sigma_px));
   for (double& x : k) x /= sum;
   std::vector<float> tmp(size_t(w) * h), out(size_t(w) * h);
-  for (int y = 0; y < h; ++y)
+  parallel_for(h, [&](long y) {
     for (int x = 0; x < w; ++x) {
       double s = 0.0;
-      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * xyz.at(std::clamp(x + i, 0, w - 1), y, 1);
+      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * xyz.at(std::clamp(x + i, 0, w - 1), int(y), 1);
       tmp[size_t(y) * w + x] = float(s);
     }
-  for (int y = 0; y < h; ++y)
+  });
+  parallel_for(h, [&](long y) {
     for (int x = 0; x < w; ++x) {
       double s = 0.0;
-      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * tmp[size_t(std::clamp(y + i, 0, h - 1)) * w + x];
+      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * tmp[size_t(std::clamp(int(y) + i, 0, h - 1)) * w + x];
       out[size_t(y) * w + x] = float(s);
     }
+  });
   return out;
 }
 
@@ -50,7 +53,8 @@ std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>
   if (prev_distance.size() != motion.pixel_count())
     throw std::invalid_argument("reproject: the previous distances and the motion image differ in size");
   std::vector<Reprojected> out(motion.pixel_count());
-  for (int y = 0; y < h; ++y)
+  parallel_for(h, [&](long yl) {
+    const int y = int(yl);
     for (int x = 0; x < w; ++x) {
       Reprojected& r = out[std::size_t(y) * w + x];
       const float* m = motion.px(x, y);
@@ -85,11 +89,31 @@ std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>
       }
       r.state = ok ? Reprojected::kValid : Reprojected::kDisoccluded;
     }
+  });
   return out;
 }
 
-std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Image& ref_xyz, const Image& motion) {
-  require_same_size(test_xyz, ref_xyz, "FlickerTracker::push");
+FlickerReference flicker_reference(const Image& ref_xyz) {
+  FlickerReference r;
+  r.width = ref_xyz.width;
+  r.height = ref_xyz.height;
+  const long n = long(ref_xyz.pixel_count());
+  r.y.resize(size_t(n));
+  r.pq.resize(size_t(n));
+  parallel_for(n, [&](long i) {
+    r.y[size_t(i)] = ref_xyz.data[size_t(i) * ref_xyz.channels + 1];
+    r.pq[size_t(i)] = perceptual_luminance(r.y[size_t(i)]);
+  });
+  r.adaptation = adaptation_luminance(ref_xyz);
+  return r;
+}
+
+std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const FlickerReference& ref,
+                                                 const Image& motion) {
+  if (test_xyz.width != ref.width || test_xyz.height != ref.height)
+    throw std::invalid_argument("FlickerTracker::push: test is " + std::to_string(test_xyz.width) + "x" +
+                                std::to_string(test_xyz.height) + " but the reference " + std::to_string(ref.width) +
+                                "x" + std::to_string(ref.height));
   require_same_size(test_xyz, motion, "FlickerTracker::push (motion)");
   if (motion.channels < 4)
     throw std::invalid_argument("FlickerTracker::push: the motion image needs 4 channels (v.xy, distance now, "
@@ -100,44 +124,56 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Im
                                 " but the sequence is " + std::to_string(width_) + "x" + std::to_string(height_));
   const int w = test_xyz.width, h = test_xyz.height;
   const std::size_t n = test_xyz.pixel_count();
-  std::vector<float> yt(n), yr(n), dist(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    yt[i] = test_xyz.data[i * test_xyz.channels + 1];
-    yr[i] = ref_xyz.data[i * ref_xyz.channels + 1];
-    dist[i] = motion.data[i * motion.channels + 2];
-  }
+  std::vector<float> yt(n), dist(n);
+  std::vector<double> pqt(n);
+  parallel_for(long(n), [&](long i) {
+    yt[size_t(i)] = test_xyz.data[size_t(i) * test_xyz.channels + 1];
+    pqt[size_t(i)] = perceptual_luminance(yt[size_t(i)]);
+    dist[size_t(i)] = motion.data[size_t(i) * motion.channels + 2];
+  });
   std::optional<FlickerFrame> result;
   if (pushed_ > 0) {
-    FlickerFrame f;
-    const std::vector<float> ya = adaptation_luminance(ref_xyz);
     const std::vector<Reprojected> warp = reproject(motion, prev_dist_);
-    double s_ct = 0, s_cr = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0;
+    // Sums per row in parallel, then over rows in order: the same result for any thread count.
+    struct Row {
+      double ct = 0, cr = 0, emc = 0, e = 0, dt = 0, dr = 0;
+      std::size_t valid = 0, disoccluded = 0, background = 0;
+    };
+    std::vector<Row> rows(static_cast<size_t>(h));
     auto pq = [](double Y) { return perceptual_luminance(Y); };
-    for (int y = 0; y < h; ++y)
+    parallel_for(h, [&](long y) {
+      Row& row = rows[size_t(y)];
       for (int x = 0; x < w; ++x) {
         const std::size_t i = std::size_t(y) * w + x;
         // Fixed-pixel terms over every pixel.
-        const double dT = pq(yt[i]) - pq(prev_yt_[i]), dR = pq(yr[i]) - pq(prev_yr_[i]);
-        s_e += std::abs(dT - dR);
-        s_dt += std::abs(dT);
-        s_dr += std::abs(dR);
+        const double dT = pqt[i] - prev_pqt_[i], dR = ref.pq[i] - prev_ref_.pq[i];
+        row.e += std::abs(dT - dR);
+        row.dt += std::abs(dT);
+        row.dr += std::abs(dR);
         // Along the motion.
         const Reprojected& rp = warp[i];
         if (rp.state == Reprojected::kBackground) {
-          ++f.background_px;
+          ++row.background;
           continue;
         }
         if (rp.state == Reprojected::kDisoccluded) {
-          ++f.disoccluded_px;
+          ++row.disoccluded;
           continue;
         }
-        const double t_prev = rp.sample(prev_yt_), r_prev = rp.sample(prev_yr_);
-        ++f.valid_px;
-        const double denom = double(ya[i]) + kContrastEpsilon;
-        s_ct += std::abs(double(yt[i]) - t_prev) / denom;
-        s_cr += std::abs(double(yr[i]) - r_prev) / denom;
-        s_emc += std::abs((pq(yt[i]) - pq(yr[i])) - (pq(t_prev) - pq(r_prev)));
+        const double t_prev = rp.sample(prev_yt_), r_prev = rp.sample(prev_ref_.y);
+        ++row.valid;
+        const double denom = double(ref.adaptation[i]) + kContrastEpsilon;
+        row.ct += std::abs(double(yt[i]) - t_prev) / denom;
+        row.cr += std::abs(double(ref.y[i]) - r_prev) / denom;
+        row.emc += std::abs((pqt[i] - ref.pq[i]) - (pq(t_prev) - pq(r_prev)));
       }
+    });
+    FlickerFrame f;
+    double s_ct = 0, s_cr = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0;
+    for (const Row& r : rows) {
+      s_ct += r.ct, s_cr += r.cr, s_emc += r.emc, s_e += r.e, s_dt += r.dt, s_dr += r.dr;
+      f.valid_px += r.valid, f.disoccluded_px += r.disoccluded, f.background_px += r.background;
+    }
     const double inv_n = n ? 1.0 / double(n) : 0.0;
     const double inv_v = f.valid_px ? 1.0 / double(f.valid_px) : std::numeric_limits<double>::quiet_NaN();
     f.temporal_error = s_e * inv_n;
@@ -152,8 +188,9 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Im
   width_ = w;
   height_ = h;
   prev_yt_ = std::move(yt);
-  prev_yr_ = std::move(yr);
+  prev_pqt_ = std::move(pqt);
   prev_dist_ = std::move(dist);
+  prev_ref_ = ref;
   ++pushed_;
   return result;
 }
@@ -162,7 +199,8 @@ void FlickerTracker::reset() {
   pushed_ = 0;
   width_ = height_ = 0;
   prev_yt_.clear();
-  prev_yr_.clear();
+  prev_pqt_.clear();
+  prev_ref_ = FlickerReference{};
   prev_dist_.clear();
 }
 

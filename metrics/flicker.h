@@ -99,13 +99,26 @@ struct Reprojected {
 std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>& prev_distance,
                                    double tolerance = kDisocclusionTolerance);
 
+// What the flicker metric needs of a reference frame: its luminance, PQ
+// encoding and adaptation luminance, computed once per frame and shared by
+// every variant measured against it.
+struct FlickerReference {
+  int width = 0, height = 0;
+  std::vector<float> y, adaptation;
+  std::vector<double> pq;
+};
+FlickerReference flicker_reference(const Image& ref_xyz);
+
 // Feed (test, reference, motion) frames in order; every frame after the first
 // yields a FlickerFrame. Test and reference are CIE XYZ (Y = 1 diffuse white).
 class FlickerTracker {
  public:
   // Throws std::invalid_argument when sizes differ, the motion image has fewer
   // than 4 channels, or the size changes between frames.
-  std::optional<FlickerFrame> push(const Image& test_xyz, const Image& ref_xyz, const Image& motion);
+  std::optional<FlickerFrame> push(const Image& test_xyz, const FlickerReference& ref, const Image& motion);
+  std::optional<FlickerFrame> push(const Image& test_xyz, const Image& ref_xyz, const Image& motion) {
+    return push(test_xyz, flicker_reference(ref_xyz), motion);
+  }
 
   const std::vector<FlickerFrame>& frames() const { return frames_; }
   std::size_t frames_pushed() const { return pushed_; }
@@ -115,7 +128,9 @@ class FlickerTracker {
  private:
   std::size_t pushed_ = 0;
   int width_ = 0, height_ = 0;
-  std::vector<float> prev_yt_, prev_yr_, prev_dist_;
+  std::vector<float> prev_yt_, prev_dist_;
+  std::vector<double> prev_pqt_;
+  FlickerReference prev_ref_;
   std::vector<FlickerFrame> frames_;
 };
 

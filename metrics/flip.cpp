@@ -1,4 +1,5 @@
 #include "metrics/flip.h"
+#include "metrics/parallel.h"
 
 #include <algorithm>
 #include <atomic>
@@ -474,33 +475,54 @@ Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd) {
   return hdr_flip_map(test_xyz, ref_xyz, ppd, HdrFlipOptions{});
 }
 
-Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd, const HdrFlipOptions& options,
-                   HdrFlipExposures* used) {
-  require_same_size(test_xyz, ref_xyz, "hdr_flip_map");
-  check_ppd(ppd, "hdr_flip_map");
-  const int w = test_xyz.width, h = test_xyz.height;
-  Image out(w, h, 1, 0.0f);
-  const HdrFlipExposures ex = resolve_hdr_flip_exposures(ref_xyz, options);
-  if (used) *used = ex;
+struct HdrFlipReference::State {
+  FlipKernels K;
+  FlipToneMapper tm = FlipToneMapper::Aces;
+  std::vector<double> scales;
+  std::vector<Prepared> ref;  // the reference, prepared once per exposure
+};
+
+HdrFlipReference::HdrFlipReference(const Image& ref_xyz, double ppd, const HdrFlipOptions& options)
+    : width_(ref_xyz.width), height_(ref_xyz.height) {
+  check_ppd(ppd, "HdrFlipReference");
+  exposures_ = resolve_hdr_flip_exposures(ref_xyz, options);
+  auto state = std::make_shared<State>();
+  state_ = state;
+  State& st = *state;
+  st.K = make_kernels(ppd);
+  st.tm = options.tone_mapper;
+  const double step = (exposures_.stop - exposures_.start) / std::max(exposures_.count - 1, 1);
+  for (int i = 0; i < exposures_.count; ++i) st.scales.push_back(std::exp2(exposures_.start + i * step));
+  st.ref.resize(st.scales.size());
+  if (ref_xyz.pixel_count() == 0) return;
+  const Image r_rgb = xyz_to_linear_srgb(ref_xyz);
+  parallel_for(long(st.scales.size()), [&](long i) {
+    Work W;
+    prepare(r_rgb, st.scales[size_t(i)], st.tm, st.K, W, st.ref[size_t(i)]);
+  });
+}
+
+Image HdrFlipReference::map(const Image& test_xyz) const {
+  if (test_xyz.width != width_ || test_xyz.height != height_)
+    throw std::invalid_argument("HdrFlipReference::map: the test image is " + std::to_string(test_xyz.width) + "x" +
+                                std::to_string(test_xyz.height) + " but the reference " + std::to_string(width_) +
+                                "x" + std::to_string(height_));
+  Image out(width_, height_, 1, 0.0f);
   if (out.pixel_count() == 0) return out;
-  const Image t_rgb = xyz_to_linear_srgb(test_xyz), r_rgb = xyz_to_linear_srgb(ref_xyz);
-  const FlipKernels K = make_kernels(ppd);
-  const FlipToneMapper tm = options.tone_mapper;
-  const double step = (ex.stop - ex.start) / std::max(ex.count - 1, 1);
-  // Exposures are independent: spread them over the cores, each worker keeping its own maximum.
-  const int workers = std::max(1, std::min<int>(ex.count, int(std::thread::hardware_concurrency())));
+  const State& st = *state_;
+  const Image t_rgb = xyz_to_linear_srgb(test_xyz);
+  // Exposures are independent: each worker keeps the maximum of the exposures it did.
+  const int workers = std::max(1, std::min<int>(int(st.scales.size()), int(std::thread::hardware_concurrency())));
   std::vector<std::vector<float>> partial(workers);
   std::atomic<int> next{0};
   auto work = [&](int id) {
     Work W;
-    Prepared pt, pr;
+    Prepared pt;
     std::vector<float>& mx = partial[id];
     mx.assign(out.pixel_count(), 0.0f);
-    for (int i = next++; i < ex.count; i = next++) {
-      const double scale = std::exp2(ex.start + i * step);
-      prepare(t_rgb, scale, tm, K, W, pt);
-      prepare(r_rgb, scale, tm, K, W, pr);
-      combine(pt, pr, mx.data(), true);
+    for (int i = next++; i < int(st.scales.size()); i = next++) {
+      prepare(t_rgb, st.scales[size_t(i)], st.tm, st.K, W, pt);
+      combine(pt, st.ref[size_t(i)], mx.data(), true);
     }
   };
   std::vector<std::thread> pool;
@@ -511,6 +533,14 @@ Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd, cons
     for (std::size_t j = 0; j < mx.size(); ++j)
       if (mx[j] > out.data[j] || std::isnan(mx[j])) out.data[j] = mx[j];
   return out;
+}
+
+Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd, const HdrFlipOptions& options,
+                   HdrFlipExposures* used) {
+  require_same_size(test_xyz, ref_xyz, "hdr_flip_map");
+  HdrFlipReference ref(ref_xyz, ppd, options);
+  if (used) *used = ref.exposures();
+  return ref.map(test_xyz);
 }
 
 }  // namespace glintlab::metrics

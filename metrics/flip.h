@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,23 @@ Image ldr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd = kFl
 // tone mapped with options.tone_mapper. `used`, if given, receives the exposures.
 Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd, const HdrFlipOptions& options,
                    HdrFlipExposures* used = nullptr);
+// HDR-FLIP against one reference, for many test images: the reference's
+// per-exposure state (tone mapped, filtered, features) is computed once, so
+// each test costs half of hdr_flip_map. map(test) equals hdr_flip_map(test,
+// ref, ppd, options) exactly. Copies share the state.
+class HdrFlipReference {
+ public:
+  HdrFlipReference(const Image& ref_xyz, double ppd = kFlipDefaultPpd, const HdrFlipOptions& options = {});
+  Image map(const Image& test_xyz) const;
+  const HdrFlipExposures& exposures() const { return exposures_; }
+
+ private:
+  struct State;
+  std::shared_ptr<const State> state_;
+  HdrFlipExposures exposures_;
+  int width_ = 0, height_ = 0;
+};
+
 // HDR-FLIP with FLIP's defaults (ACES, exposures from the reference).
 Image hdr_flip_map(const Image& test_xyz, const Image& ref_xyz, double ppd = kFlipDefaultPpd);
 

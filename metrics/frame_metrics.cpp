@@ -5,6 +5,7 @@
 #include "metrics/pixel_scan.h"
 #include "metrics/pooled_error.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -24,6 +25,9 @@ FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear) const {
   Reference r;
   r.xyz = cm_.to_xyz_d65(ref_linear, space_);
   r.metric_xyz = options_.display_view.empty() ? r.xyz : metric_xyz(cm_, ref_linear, space_, options_);
+  r.flicker = flicker_reference(r.xyz);
+  if (options_.flip_hdr && std::find(per_pixel_.begin(), per_pixel_.end(), "flip") != per_pixel_.end())
+    r.flip.emplace(r.metric_xyz, options_.flip_ppd);
   return r;
 }
 
@@ -63,12 +67,19 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
 
   for (const auto& name : per_pixel_)
     timed(name, [&] {
-      MetricResult r = evaluate_metric(name, test_metric, ref.metric_xyz, options_);
-      v.emplace_back(name, defect ? nan : r.mean);
-      v.emplace_back(name + "_max", defect ? nan : r.max);
+      double mean = nan, max = nan;
+      if (name == "flip" && ref.flip) {
+        map_mean_max(ref.flip->map(test_metric), &mean, &max);  // the reference side is shared
+      } else {
+        MetricResult r = evaluate_metric(name, test_metric, ref.metric_xyz, options_);
+        mean = r.mean;
+        max = r.max;
+      }
+      v.emplace_back(name, defect ? nan : mean);
+      v.emplace_back(name + "_max", defect ? nan : max);
     });
   timed("flicker", [&] {
-    std::optional<FlickerFrame> f = flicker.push(test_xyz, ref.xyz, motion);
+    std::optional<FlickerFrame> f = flicker.push(test_xyz, ref.flicker, motion);
     auto put = [&](const char* n, double x) { v.emplace_back(n, f && !defect ? x : nan); };
     put("flicker_ratio", f ? f->flicker_ratio : nan);
     put("temporal_error", f ? f->temporal_error : nan);

@@ -17,8 +17,10 @@
 #include "core/util/image.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/flicker.h"
+#include "metrics/flip.h"
 #include "metrics/metric_registry.h"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,6 +40,8 @@ class FrameMetrics {
   struct Reference {
     Image xyz;         // scene-referred XYZ D65
     Image metric_xyz;  // what per-pixel metrics compare (display-referred when a view is set)
+    FlickerReference flicker;               // the flicker metric's view of it
+    std::optional<HdrFlipReference> flip;   // HDR-FLIP's per-exposure state, when FLIP is measured
   };
   Reference prepare(const Image& ref_linear) const;
 

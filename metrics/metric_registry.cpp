@@ -11,9 +11,8 @@
 
 namespace glintlab::metrics {
 
-namespace {
 // Mean (in double) and max of a 1-channel map; NaN anywhere gives NaN for both.
-void mean_max(const Image& m, double* mean, double* max) {
+void map_mean_max(const Image& m, double* mean, double* max) {
   double s = 0.0, mx = -std::numeric_limits<double>::infinity();
   bool nan = false;
   for (float v : m.data) {
@@ -30,7 +29,6 @@ void mean_max(const Image& m, double* mean, double* max) {
   *mean = nan ? q : s / double(m.data.size());
   *max = nan ? q : mx;
 }
-}  // namespace
 
 std::vector<std::string> metric_names() { return {"deltaE2000", "deltaEITP", "flip", "psnr", "relative"}; }
 
@@ -61,7 +59,7 @@ MetricResult evaluate_metric(const std::string& name, const Image& test_xyz, con
     r.unit = "dB";
     r.map = squared_error_map(test_xyz, ref_xyz);
     double mse_f = 0.0, worst_sq = 0.0;
-    mean_max(r.map, &mse_f, &worst_sq);
+    map_mean_max(r.map, &mse_f, &worst_sq);
     r.mean = psnr_from_mse(mean_squared_error_y(test_xyz, ref_xyz), opt.psnr_peak);  // MSE in double
     // In dB like the mean: the PSNR of the worst pixel (the lowest per-pixel PSNR).
     r.max = psnr_from_mse(worst_sq, opt.psnr_peak);
@@ -70,7 +68,7 @@ MetricResult evaluate_metric(const std::string& name, const Image& test_xyz, con
     r.unit = "relative";
     r.map = relative_error_map(test_xyz, ref_xyz);
   }
-  mean_max(r.map, &r.mean, &r.max);
+  map_mean_max(r.map, &r.mean, &r.max);
   return r;
 }
 

@@ -39,6 +39,9 @@ struct MetricResult {
   Image map;  // 1 channel, same size as the inputs
 };
 
+// Mean (in double) and max of a 1-channel map; NaN anywhere gives NaN for both.
+void map_mean_max(const Image& map, double* mean, double* max);
+
 // Throws std::invalid_argument for an unknown name (the message lists the allowed names) and for
 // mismatched sizes (the message states both sizes).
 MetricResult evaluate_metric(const std::string& name, const Image& test_xyz, const Image& ref_xyz,

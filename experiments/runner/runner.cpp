@@ -5,6 +5,7 @@
 #include "core/util/json_check.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/report/report.h"
 #include "experiments/runner/frame_loop.h"
 #include "experiments/runner/journal.h"
 #include "experiments/runner/output_writers.h"
@@ -94,8 +95,11 @@ struct DefectCount final : RecordSink {
 };
 
 // frames.csv, summary.json, the contact sheet and the report, all from the journals.
+// report_status: the report's exit code (0 when not asked for).
 nlohmann::json write_outputs(const fs::path& dir, const RunPlan& plan, const std::vector<const Journal*>& journals,
-                             const RunInfo& info, ImageWriter& images, bool report, std::ostream& log) {
+                             const RunInfo& info, ImageWriter& images, bool report, int* report_status,
+                             std::ostream& log) {
+  *report_status = kExitOk;
   RecordNames names;
   for (const Journal* j : journals) j->replay(names);
   const FrameSchema schema(names.metrics, names.passes);
@@ -110,7 +114,7 @@ nlohmann::json write_outputs(const fs::path& dir, const RunPlan& plan, const std
   images.finish();
   log << "wrote " << (dir / "frames.csv").string() << ", " << (dir / "summary.json").string()
       << (plan.spec->output.contact_sheet ? " and " + (dir / "contact_sheet.png").string() : std::string()) << "\n";
-  (void)report;  // the report is written by experiments/report when it is built in
+  if (report) *report_status = write_report(dir.string(), log);
   return summary.summary();
 }
 
@@ -190,11 +194,12 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   }
 
   // ---- outputs, from the journal
+  int report_status = kExitOk;
   const nlohmann::json summary =
       write_outputs(out_dir, plan, {journal.get()}, RunInfo{ctx.info().name, cm.config_path(), 1}, images,
-                    opt.report, log);
+                    opt.report, &report_status, log);
   print_table(log, summary);
-  int status = kExitOk;
+  int status = report_status;  // a failed report is a failed run, unless the run's own defects say more
   DefectCount defects;
   journal->replay(defects);
   if (defects.frames > 0) {
@@ -288,10 +293,11 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
     device = nlohmann::json::parse(in).value("device", "");
   } catch (const std::exception&) {
   }
+  int report_status = kExitOk;
   const nlohmann::json summary =
-      write_outputs(out_dir, plan, js, RunInfo{device, cm.config_path(), 1}, images, report, log);
+      write_outputs(out_dir, plan, js, RunInfo{device, cm.config_path(), 1}, images, report, &report_status, log);
   print_table(log, summary);
-  return kExitOk;
+  return report_status;
 }
 
 }  // namespace glintlab

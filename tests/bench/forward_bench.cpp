@@ -1,35 +1,65 @@
-// Forward-pass throughput on the current Vulkan device: ms/frame and Mpix/s of
-// the sand material at 640x360 and 1280x720, for the full material and for
-// the variants with features compiled out, measured in one run (so ratios
-// between them are meaningful). Median of N timed frames after warm-up; GPU
-// timestamps; variants timed round-robin.
-// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H]
+// Throughput of the renderer and the metrics on the current Vulkan device,
+// measured in one run so that ratios between rows are meaningful (GPU
+// timestamps; median of N timed frames after warm-up; variants timed
+// round-robin so that drift in the machine's load spreads over all of them).
+//   1. Surface pass at 640x360 and 1280x720: the floor (same geometry and
+//      passes, a trivial fragment shader), the full sand material and the
+//      variants with features compiled out; per row ms/frame, Mpix/s, the
+//      ratio to the full material, and what the material itself costs (row
+//      minus floor) and the floor's share of the row.
+//   2. The reference: ms per sample of a grid x grid reference frame against a
+//      1-spp frame's, and a geometry-bound case (a small image, many samples).
+//   3. The TAA resolve against the surface pass of the same frame.
+//   4. Every per-frame metric of one 640x360 variant frame: ms per metric.
+// The scene is fixed here (the close orbit over a wavy plane the figures in the
+// README were taken on), independent of the default experiment.
+// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--no-reference]
+#include "core/material/program.h"
+#include "core/render/frame_graph.h"
+#include "core/render/sample_schedule.h"
+#include "core/render/surface_pass.h"
+#include "core/render/taa_pass.h"
 #include "core/scene/camera_path.h"
 #include "core/scene/mesh.h"
-#include "core/material/program.h"
-#include "core/render/surface_pass.h"
-#include "core/material/sand_material.h"
 #include "core/vk/vk_context.h"
+#include "experiments/runner/variant_factory.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
+#include "metrics/frame_metrics.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
+#include <thread>
 
 using namespace glintlab;
 
 namespace {
 
+const char* kScene = R"({
+  "name": "bench",
+  "resolution": [640, 360],
+  "scene": {
+    "mesh": {"type": "wavy", "size": 10, "tessellation": 128, "amplitude": 0.4, "wavelength": 5},
+    "sky": {"turbidity": 3, "sky_intensity": 0.5, "sun_elevation_deg": 25, "sun_azimuth_deg": 30, "sun_intensity": 6}
+  },
+  "camera_path": "orbit-close",
+  "frames": 2,
+  "material": {"preset": "thesis-hdri-match", "noise_scale": 400, "glint_sigma": 0.002, "I_glints": [20, 20, 20],
+               "sigmoid_a": 2, "sigmoid_b": 6},
+  "variants": [{"name": "no-aa"}, {"name": "taa", "aa": "taa"}]
+})";
+
 struct Case {
   std::string name;
-  core::SandParams params;
-  core::SandFeatures needs;
+  core::MaterialProgram program;
 };
 
 double median(std::vector<double> v) {
@@ -37,89 +67,163 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
+core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int w, int h,
+                         const std::vector<glm::vec2>& offsets) {
+  core::FrameInputs in;
+  in.uniforms = frame_uniforms(spec.path.frame(0, w, h), data.env, w, h, data.env_texture.mips_rgba.size());
+  in.samples = core::samples_for(spec.path, 0, w, h, offsets);
+  return in;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string device;
   int frames = 10;
+  bool reference = true;
   std::vector<std::pair<int, int>> sizes = {{640, 360}, {1280, 720}};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--device" && i + 1 < argc) device = argv[++i];
     else if (a == "--frames" && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--no-reference") reference = false;
     else if (a == "--size" && i + 2 < argc) {
       sizes = {{std::atoi(argv[i + 1]), std::atoi(argv[i + 2])}};
       i += 2;
     } else {
-      std::cerr << "usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H]\n";
+      std::cerr << "usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--no-reference]\n";
       return 2;
     }
   }
-  ExperimentSpec spec = ExperimentSpec::load(resolve_experiment_path("default"));
+  ExperimentSpec spec = ExperimentSpec::from_json(nlohmann::json::parse(kScene), "<bench scene>");
   metrics::ColorManager cm;
-  core::Mesh mesh = core::build_mesh(spec.mesh);
-  core::Environment env = prepare_environment(spec, cm);
-  core::EnvironmentTexture tex = environment_texture(env);
+  SceneData data = build_scene(spec, cm);
   core::VkContext ctx(core::ContextOptions{device, false});
-  core::SceneGpu scene(ctx, mesh, tex);
+  core::SceneGpu scene(ctx, data.mesh, data.env_texture);
   const char* lp_threads = std::getenv("LP_NUM_THREADS");
-  std::printf("device: %s (LP_NUM_THREADS=%s)\nscene: %s, path %s frame 0, material thesis-default, %d timed frames "
-              "after 2 warm-up\n",
-              ctx.info().name.c_str(), lp_threads ? lp_threads : "unset", spec.mesh.type.c_str(),
-              spec.path_name.c_str(), frames);
+  std::printf("device: %s (LP_NUM_THREADS=%s)\nscene: wavy plane (%zu triangles), orbit-close frame 0, "
+              "thesis-hdri-match sand with glints; %d timed frames after 2 warm-up (median)\n",
+              ctx.info().name.c_str(), lp_threads ? lp_threads : "unset", data.mesh.indices.size() / 3, frames);
 
-  core::SandParams base = to_working_space(spec.variants.front().material, spec.working_space, cm);
-  core::SandFeatures all = distance_range(spec, mesh);
+  // ---- 1. surface pass: floor, full material, pruned variants
+  const core::SandParams base = to_working_space(spec.variants.front().material, spec.working_space, cm);
+  auto sand = [&](core::SandParams p, double lo, double hi) {
+    return core::sand_program(p, {lo, hi, "final"}, core::ProgramRole::Variant);
+  };
   std::vector<Case> cases;
-  cases.push_back({"full (close+far+transition)", base, {0.0, 1e30, "final"}});
-  cases.push_back({"as the default scene needs", base, all});
+  cases.push_back({"floor (geometry and passes only)", core::geometry_only_program()});
+  cases.push_back({"full (close+far+transition)", sand(base, 0.0, 1e30)});
+  cases.push_back({"as the scene needs", core::sand_program(base, data.range, core::ProgramRole::Variant)});
   core::SandParams no_t = base;
   no_t.T = 0;
-  cases.push_back({"T = 0 (no transmission)", no_t, {0.0, 1e30, "final"}});
+  cases.push_back({"T = 0 (no transmission)", sand(no_t, 0.0, 1e30)});
   core::SandParams no_g = base;
   no_g.glint_model = core::GlintModel::None;
-  cases.push_back({"no glints", no_g, {0.0, 1e30, "final"}});
-  // With the thesis sigmoid (a = 2, b = 1.3) sig(0) = 0.07: the far field is
-  // always blended in. A transition pushed out to b = 100 never reaches it
-  // within 20 units, so the far branch and the blend compile out.
+  cases.push_back({"no glints", sand(no_g, 0.0, 1e30)});
+  // A transition pushed out to b = 100 is never reached within 20 units: the far branch compiles out.
   core::SandParams near_only = base;
   near_only.sigmoid_b = 100;
-  cases.push_back({"close only (b = 100, dist <= 20)", near_only, {0.0, 20.0, "final"}});
-  cases.push_back({"far only (close never reached)", base, {1e6, 1e30, "final"}});
+  cases.push_back({"close only (b = 100, dist <= 20)", sand(near_only, 0.0, 20.0)});
+  cases.push_back({"far only (close never reached)", sand(base, 1e6, 1e30)});
   core::SandParams minimal = no_t;
   minimal.glint_model = core::GlintModel::None;
-  cases.push_back({"far only, T = 0, no glints", minimal, {1e6, 1e30, "final"}});
+  cases.push_back({"far only, T = 0, no glints", sand(minimal, 1e6, 1e30)});
 
   for (auto [w, h] : sizes) {
-    core::FrameCamera cam = spec.path.frame(0, w, h);
-    core::FrameUniforms fu = frame_uniforms(cam, env, w, h, tex.mips_rgba.size());
-    std::vector<core::SamplePush> one = {{cam.view_proj, {0, 0, 1, 0}}};
-    std::printf("\n%dx%d (%.3f Mpix)\n", w, h, double(w) * h * 1e-6);
-    std::printf("  %-34s %10s %10s %8s  %s\n", "variant", "ms/frame", "Mpix/s", "ratio", "defines");
-    // All variants are built first and timed round-robin, so drift in the
-    // machine's load spreads over every variant instead of biasing one.
+    const core::FrameInputs one = inputs(spec, data, w, h, {glm::vec2(0.0f)});
+    std::printf("\nsurface pass, %dx%d (%.3f Mpix), sky on\n", w, h, double(w) * h * 1e-6);
+    std::printf("  %-34s %9s %9s %7s %11s %11s\n", "variant", "ms/frame", "Mpix/s", "ratio", "material ms",
+                "floor share");
     std::vector<std::unique_ptr<core::SurfaceRenderer>> passes;
-    std::vector<std::string> defines;
     for (const Case& c : cases) {
-      // The same factory as the runner's (core/material/program.h).
       core::SurfacePassOptions o;
-      o.program = core::sand_program(c.params, c.needs, core::ProgramRole::Variant);
-      o.sky = false;
-      std::string defs;
-      for (const auto& d : o.program.defines) defs += (defs.empty() ? "" : " ") + d;
-      defines.push_back(defs);
+      o.program = c.program;
       passes.push_back(std::make_unique<core::SurfaceRenderer>(ctx, scene, w, h, o));
-      for (int i = 0; i < 2; ++i) passes.back()->render(fu, one);  // warm-up (JIT, caches)
+      for (int i = 0; i < 2; ++i) passes.back()->render(one.uniforms, one.samples);  // warm-up (JIT, caches)
     }
     std::vector<std::vector<double>> ms(cases.size());
     for (int i = 0; i < frames; ++i)
-      for (size_t c = 0; c < cases.size(); ++c) ms[c].push_back(passes[c]->render(fu, one).timings[0].gpu_ms);
-    double full_ms = median(ms[0]);
+      for (size_t c = 0; c < cases.size(); ++c)
+        ms[c].push_back(passes[c]->render(one.uniforms, one.samples).timings[0].gpu_ms);
+    const double floor_ms = median(ms[0]), full_ms = median(ms[1]);
     for (size_t c = 0; c < cases.size(); ++c) {
-      double m = median(ms[c]);
-      std::printf("  %-34s %10.2f %10.2f %8.2f  %s\n", cases[c].name.c_str(), m, double(w) * h * 1e-6 / (m * 1e-3),
-                  m / full_ms, defines[c].c_str());
+      const double m = median(ms[c]);
+      std::printf("  %-34s %9.2f %9.2f %7.2f %11.2f %10.0f%%\n", cases[c].name.c_str(), m,
+                  double(w) * h * 1e-6 / (m * 1e-3), m / full_ms, m - floor_ms, 100.0 * floor_ms / m);
     }
+  }
+
+  // ---- 2. the reference: cost per sample, and a geometry-bound case
+  if (reference) {
+    const core::MaterialProgram ref = core::sand_program(base, data.range, core::ProgramRole::Reference);
+    struct RefCase {
+      int w, h, grid;
+    };
+    std::printf("\nreference (micro model, grid x grid stratified samples)\n");
+    std::printf("  %-26s %11s %13s %13s %9s\n", "case", "ms/frame", "ms/sample", "1-spp ms", "ratio");
+    for (RefCase rc : {RefCase{640, 360, 8}, RefCase{16, 9, 64}}) {
+      core::SurfacePassOptions o;
+      o.program = ref;
+      core::SurfaceRenderer r(ctx, scene, rc.w, rc.h, o);
+      const core::FrameInputs one = inputs(spec, data, rc.w, rc.h, {glm::vec2(0.0f)});
+      const core::FrameInputs many = inputs(spec, data, rc.w, rc.h, reference_offsets(rc.grid));
+      r.render(one.uniforms, one.samples);
+      std::vector<double> t1, tn;
+      for (int i = 0; i < std::max(3, frames / 2); ++i) t1.push_back(r.render(one.uniforms, one.samples).gpu_ms);
+      for (int i = 0; i < 2; ++i) tn.push_back(r.render(many.uniforms, many.samples).gpu_ms);
+      const double n = double(rc.grid) * rc.grid, per = median(tn) / n;
+      char label[64];
+      std::snprintf(label, sizeof label, "%dx%d at %d spp", rc.w, rc.h, int(n));
+      std::printf("  %-26s %11.1f %13.4f %13.4f %9.2f\n", label, median(tn), per, median(t1), per / median(t1));
+    }
+  }
+
+  // ---- 3. TAA resolve vs the surface pass of its frame
+  {
+    const int w = sizes.front().first, h = sizes.front().second;
+    RenderSetup taa = build_variant(ctx, scene, w, h, spec.variants[1], core::sand_program(base, data.range,
+                                                                                           core::ProgramRole::Variant));
+    core::FrameInputs in = inputs(spec, data, w, h, {core::jitter_offset(core::JitterSequence::Halton16, 0)});
+    std::map<std::string, std::vector<double>> per;
+    for (int i = 0; i < frames + 2; ++i) {
+      core::FrameResult r = taa.graph->execute(in);
+      if (i >= 2)
+        for (const auto& t : r.timings) per[t.pass].push_back(t.gpu_ms);
+    }
+    std::printf("\nTAA at %dx%d: surface pass (with motion vectors) %.2f ms, TAA resolve %.2f ms (%.3f of the surface "
+                "pass)\n",
+                w, h, median(per["surface"]), median(per["taa"]), median(per["taa"]) / median(per["surface"]));
+  }
+
+  // ---- 4. metrics of one variant frame
+  {
+    const int w = 640, h = 360;
+    core::SurfacePassOptions o;
+    o.program = core::sand_program(base, data.range, core::ProgramRole::Variant);
+    o.motion = true;
+    core::SurfaceRenderer r(ctx, scene, w, h, o);
+    const core::FrameInputs in = inputs(spec, data, w, h, {glm::vec2(0.0f)});
+    core::FrameResult f = r.render(in.uniforms, in.samples);
+    const Image& test = f.images.at("color");
+    const Image& motion = f.images.at("motion");
+    metrics::FrameMetrics fm(cm, spec.working_space, spec.metrics, spec.metric_options);
+    const auto ref = fm.prepare(test);
+    metrics::FlickerTracker tracker;
+    std::map<std::string, std::vector<double>> cost;
+    std::vector<double> total;
+    for (int i = 0; i < std::max(3, frames / 2); ++i) {
+      metrics::NamedValues c;
+      fm.measure(test, ref, motion, tracker, &c);
+      double sum = 0;
+      for (const auto& [n, ms] : c) {
+        cost[n].push_back(ms);
+        sum += ms;
+      }
+      if (i > 0) total.push_back(sum);  // the first has no previous frame for the flicker metrics
+    }
+    std::printf("\nmetrics of one %dx%d variant frame (wall ms, %u hardware threads): total %.1f ms\n", w, h,
+                std::thread::hardware_concurrency(), median(total));
+    for (const auto& [n, v] : cost) std::printf("  %-16s %8.2f ms\n", n.c_str(), median(v));
   }
   return 0;
 }

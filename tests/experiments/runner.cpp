@@ -57,6 +57,7 @@ TEST(Runner, RunWritesEveryMetricForEveryFrameAndVariant) {
   fs::path dir = fresh_dir("run");
   std::ofstream(dir / "tiny.json") << kTiny;
   RunOptions opt;
+  opt.report = false;  // the report has its own test (report.cpp)
   opt.experiment = (dir / "tiny.json").string();
   opt.out_dir = (dir / "out").string();
   opt.cache_dir = (dir / "cache").string();
@@ -141,6 +142,7 @@ TEST(Runner, BadExperimentIsExitCodeTwoWithFileAndKey) {
   j["variants"][1]["ssaa_grid"] = 99;
   std::ofstream(dir / "bad.json") << j.dump();
   RunOptions opt;
+  opt.report = false;  // the report has its own test (report.cpp)
   opt.experiment = (dir / "bad.json").string();
   opt.out_dir = (dir / "out").string();
   std::ostringstream log;
@@ -180,6 +182,7 @@ TEST(Runner, StaticCameraGivesIdenticalFramesAndNoFlicker) {
   j["output"] = {{"exr", true}, {"png", false}, {"every", 1}};
   std::ofstream(dir / "static.json") << j.dump();
   RunOptions opt;
+  opt.report = false;  // the report has its own test (report.cpp)
   opt.experiment = (dir / "static.json").string();
   opt.out_dir = (dir / "out").string();
   opt.cache_dir = (dir / "cache").string();

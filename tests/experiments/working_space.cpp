@@ -89,6 +89,7 @@ Render render(const nlohmann::json& j, const std::string& tag) {
   fs::create_directories(dir);
   std::ofstream(dir / "ws.json") << j.dump(2);
   RunOptions opt;
+  opt.report = false;  // the report has its own test (report.cpp)
   opt.experiment = (dir / "ws.json").string();
   opt.out_dir = (dir / "out").string();
   opt.cache_dir = (dir / "cache").string();

@@ -1,0 +1,33 @@
+// The one way metrics spread work over the cores: parallel_for(n, fn) calls
+// fn(i) for every i in [0, n) from up to hardware_concurrency threads (the
+// caller's included) and returns when all are done. Work items are taken in
+// chunks in order; callers that sum write per-item partials and add them up
+// in order afterwards, so results do not depend on the thread count.
+// (Plain std::thread rather than OpenMP: no busy-waiting workers that would
+// take the cores from lavapipe's rasteriser threads between metric calls.)
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <vector>
+
+namespace glintlab::metrics {
+
+template <typename Fn>
+void parallel_for(long n, Fn&& fn, long chunk = 0) {
+  if (n <= 0) return;
+  const long threads = std::max(1L, std::min<long>(n, long(std::thread::hardware_concurrency())));
+  if (chunk <= 0) chunk = std::max(1L, n / (threads * 8));
+  std::atomic<long> next{0};
+  auto work = [&] {
+    for (long begin = next.fetch_add(chunk); begin < n; begin = next.fetch_add(chunk))
+      for (long i = begin, end = std::min(n, begin + chunk); i < end; ++i) fn(i);
+  };
+  std::vector<std::thread> pool;
+  for (long t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
+}
+
+}  // namespace glintlab::metrics
