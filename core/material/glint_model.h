@@ -11,12 +11,18 @@
 namespace glintlab::core {
 
 enum class GlintModel : uint32_t {
-  None = 0,  // no glint term
-  Kajs = 1,  // Kajs 2022 eq. 4.17-4.23: per-grain cube micro normals, Gaussian gate
+  None = 0,      // no glint term
+  Kajs = 1,      // Kajs 2022 eq. 4.17-4.23: per-grain cube micro normals, Gaussian gate
+  Grains = 2,    // explicit microdetails at the glint density, point evaluation (the truth of zirr when supersampled)
+  Zirr = 3,      // Zirr & Kaplanyan 2016: footprint-filtered binomial counting of reflecting microdetails
+  Beckmann = 4,  // the smooth limit of grains and zirr: Cook-Torrance with the global Beckmann NDF
 };
 
-inline constexpr EnumTable<GlintModel, 2> kGlintModelNames{{
+inline constexpr EnumTable<GlintModel, 5> kGlintModelNames{{
     {GlintModel::Kajs, "kajs"},
+    {GlintModel::Grains, "grains"},
+    {GlintModel::Zirr, "zirr"},
+    {GlintModel::Beckmann, "beckmann"},
     {GlintModel::None, "none"},
 }};
 

@@ -22,7 +22,9 @@ MaterialProgram sand_program(const SandParams& params, const SandFeatures& needs
   p.fragment = "passes/sand.frag";
   SandFeatures f = needs;
   if (role == ProgramRole::Reference) f.min_distance = f.max_distance = 0.0;  // the close field is always reached
-  p.defines = shader_defines(params, f);
+  // the truth of a filtered glint model is its point-evaluated microstructure (zirr -> grains)
+  const SandParams shaded = role == ProgramRole::Reference ? params.reference() : params;
+  p.defines = shader_defines(shaded, f);
   if (role == ProgramRole::Reference) {
     // DESIGN "Ground truth": the far model and the sigmoid transition are
     // approximations of the footprint average, so the truth has neither.
@@ -34,7 +36,7 @@ MaterialProgram sand_program(const SandParams& params, const SandFeatures& needs
     p.defines.push_back("SAND_FAR=0");
     p.defines.push_back("SAND_CLOSE=1");
   }
-  SandParamsGPU gpu = params.pack();
+  SandParamsGPU gpu = shaded.pack();
   p.block.resize(sizeof gpu);
   std::memcpy(p.block.data(), &gpu, sizeof gpu);
   return p;

@@ -23,6 +23,10 @@ const Range kSSS{"SSS", 0, 1}, kRs{"R_s", 0, 1}, kT{"T", 0, 1}, kRt{"R_t", 0, 1}
     kScatter{"scattering", 0, 1}, kAbsorb{"absorption", 0, 1}, kSigmaON{"oren_nayar_sigma", 0, kPi / 2},
     kSigA{"sigmoid_a", 1e-6, 1e4}, kSigB{"sigmoid_b", 0, 1e7}, kIor{"ior", 1, 3}, kColour{"palette", 0, 1e3},
     kGlintGain{"I_glints", 0, 1e6};
+// "glints" (Zirr & Kaplanyan 2016 sec. 4.5); names as the JSON keys inside "glints"
+const Range kLogDensity{"log_density", 0, 14}, kAlphaG{"alpha_g", 1e-3, 1},
+    kRelRough{"relative_roughness", 1e-3, 1}, kSizeVar{"size_variation", 0, 2}, kIntensity{"intensity", 0, 1e6},
+    kLightCone{"light_cone", 0, 0.5}, kColorSat{"color_saturation", 0, 1};
 
 std::string num(double v) {
   std::ostringstream o;
@@ -33,6 +37,12 @@ std::string num(double v) {
 void check(const Range& r, double v, const std::string& suffix = "") {
   if (!std::isfinite(v) || v < r.lo || v > r.hi)
     throw ConfigError("sand: " + std::string(r.name) + suffix + " = " + num(v) + " is out of range; allowed [" +
+                      num(r.lo) + ", " + num(r.hi) + "]");
+}
+
+void check_glint(const Range& r, double v, const std::string& suffix = "") {
+  if (!std::isfinite(v) || v < r.lo || v > r.hi)
+    throw ConfigError("sand: glints." + std::string(r.name) + suffix + " = " + num(v) + " is out of range; allowed [" +
                       num(r.lo) + ", " + num(r.hi) + "]");
 }
 
@@ -81,7 +91,8 @@ std::vector<std::string> SandParams::compat_names() {
 }
 
 std::vector<std::string> SandParams::debug_output_names() {
-  return {"final", "diffuse", "specular", "glints", "fresnel", "transmission", "far", "sigmoid", "grain_id", "close"};
+  return {"final", "diffuse",  "specular", "glints", "fresnel",
+          "transmission", "far", "sigmoid",  "grain_id", "close", "glint_cells"};
 }
 
 int SandParams::debug_output_define(const std::string& name) {
@@ -111,6 +122,15 @@ void SandParams::validate() const {
   check(kIor, ior);
   check_enum("palette_space", palette_space, kColourSpaces);
   check_enum("fresnel_half_vector", fresnel_half_vector, kFresnelHalfVectors);
+  check_glint(kLogDensity, glints.log_density);
+  for (size_t a = 0; a < 2; ++a) {
+    check_glint(kAlphaG, glints.alpha_g[a], "[" + std::to_string(a) + "]");
+    check_glint(kRelRough, glints.relative_roughness[a], "[" + std::to_string(a) + "]");
+  }
+  check_glint(kSizeVar, glints.size_variation);
+  check_glint(kIntensity, glints.intensity);
+  if (glints.light_cone) check_glint(kLightCone, *glints.light_cone);
+  check_glint(kColorSat, glints.color_saturation);
   if (appendix_compat & ~uint32_t(kSandCompatAll))
     throw ConfigError("sand: appendix_compat = " + std::to_string(appendix_compat) + " has unknown bits; allowed 0.." +
                       std::to_string(unsigned(kSandCompatAll)));
@@ -178,8 +198,41 @@ SandParams SandParams::from_json(JsonReader& r) {
       r.fail("appendix_compat", "expected " + allowed);
     }
   }
+  p.energy_consistent = r.get_bool("energy_consistent", p.energy_consistent);
+  if (auto g = r.optional_child("glints")) {
+    auto& G = p.glints;
+    auto getg = [&](const Range& range, double def) { return g->get_number(range.name, def, range.lo, range.hi); };
+    auto get2 = [&](const Range& range, std::array<double, 2> def) {
+      auto v = g->get_numbers(range.name, std::vector<double>(def.begin(), def.end()), range.lo, range.hi);
+      return std::array<double, 2>{v[0], v[1]};
+    };
+    G.log_density = getg(kLogDensity, G.log_density);
+    G.alpha_g = get2(kAlphaG, G.alpha_g);
+    G.relative_roughness = get2(kRelRough, G.relative_roughness);
+    G.size_variation = getg(kSizeVar, G.size_variation);
+    G.intensity = getg(kIntensity, G.intensity);
+    if (g->has(kLightCone.name)) {
+      const auto& j = g->raw(kLightCone.name);
+      if (j.is_string() && j.get<std::string>() == "sun") {
+        G.light_cone.reset();
+      } else if (j.is_number() && std::isfinite(j.get<double>()) && j.get<double>() >= kLightCone.lo &&
+                 j.get<double>() <= kLightCone.hi) {
+        G.light_cone = j.get<double>();
+      } else {
+        g->fail(kLightCone.name, "expected \"sun\" or a number in [0, 0.5] (radians)");
+      }
+    }
+    G.color_saturation = getg(kColorSat, G.color_saturation);
+    g->finish();
+  }
   r.finish();
   p.validate();
+  return p;
+}
+
+SandParams SandParams::reference() const {
+  SandParams p = *this;
+  if (p.glint_model == GlintModel::Zirr) p.glint_model = GlintModel::Grains;
   return p;
 }
 
@@ -207,6 +260,16 @@ SandParamsGPU SandParams::pack() const {
   g.appendix_compat = appendix_compat;
   g.fresnel_half_vector = fresnel_half_vector == "light_view" ? 1u : 0u;  // SAND_FRESNEL_*
   g.glint_model = uint32_t(glint_model);                                  // SAND_GLINT_*
+  g.energy_consistent = energy_consistent ? 1u : 0u;
+  g.glint_intensity = float(glints.intensity);
+  g.glint_light_cone = glints.light_cone ? float(*glints.light_cone) : -1.0f;  // < 0: the sun's
+  g.glint_size_variation = float(glints.size_variation);
+  for (size_t a = 0; a < 2; ++a) {
+    g.glint_alpha[a] = float(glints.alpha_g[a]);
+    g.glint_alpha[2 + a] = float(glints.relative_roughness[a]);
+  }
+  g.glint_log_density = float(glints.log_density);
+  g.glint_color_saturation = float(glints.color_saturation);
   return g;
 }
 
@@ -224,7 +287,9 @@ std::vector<std::string> shader_defines(const SandParams& p, const SandFeatures&
     throw ConfigError("sand: features: need 0 <= min_distance <= max_distance, got [" + num(needs.min_distance) +
                       ", " + num(needs.max_distance) + "]");
   bool transmission = p.T > 0.0;
-  bool glints = p.glint_model != GlintModel::None && (p.I_glints[0] > 0 || p.I_glints[1] > 0 || p.I_glints[2] > 0);
+  const bool kajs = p.glint_model == GlintModel::Kajs;
+  bool glints = p.glint_model != GlintModel::None &&
+                (kajs ? (p.I_glints[0] > 0 || p.I_glints[1] > 0 || p.I_glints[2] > 0) : p.glints.intensity > 0);
   bool far = true, close = true;
   if (debug == 0) {
     // eq. 4.38: the far weight is sig(dist), increasing in dist (a > 0)
@@ -232,10 +297,12 @@ std::vector<std::string> shader_defines(const SandParams& p, const SandFeatures&
     close = 1.0 - sand_sigmoid(needs.min_distance, p.sigmoid_a, p.sigmoid_b) >= kSandPruneWeight;
     if (!far && !close) close = true;  // degenerate range: keep the nearer field
   }
-  if (!close) glints = false;  // glints live in L_close only
+  // kajs glints live in L_close only; the other models also add their
+  // smooth limit to L_far (shaders/sand/sand.glsl)
+  if (!close && kajs) glints = false;
   return {"SAND_TRANSMISSION=" + std::to_string(int(transmission)), "SAND_GLINTS=" + std::to_string(int(glints)),
-          "SAND_CLOSE=" + std::to_string(int(close)), "SAND_FAR=" + std::to_string(int(far)),
-          "SAND_DEBUG=" + std::to_string(debug)};
+          "SAND_GLINT_MODEL=" + std::to_string(uint32_t(p.glint_model)), "SAND_CLOSE=" + std::to_string(int(close)),
+          "SAND_FAR=" + std::to_string(int(far)), "SAND_DEBUG=" + std::to_string(debug)};
 }
 
 }  // namespace glintlab::core

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,12 @@ struct SandParamsGPU {
   float SSS, R_s, T, R_t;
   float sigma_g, P, noise_scale, ior;
   float scattering, absorption, sigma_on, sig_a;
-  float sig_b, pad0, pad1, pad2;
-  uint32_t appendix_compat, fresnel_half_vector, glint_model, pad3;
+  float sig_b, glint_intensity, glint_light_cone, glint_size_variation;
+  uint32_t appendix_compat, fresnel_half_vector, glint_model, energy_consistent;
+  float glint_alpha[4];  // xy = alpha_g (u, v), zw = relative roughness (u, v)
+  float glint_log_density, glint_color_saturation, glint_pad0, glint_pad1;
 };
-static_assert(sizeof(SandParamsGPU) == 224, "SandParamsGPU must match the std140 GLSL struct");
+static_assert(sizeof(SandParamsGPU) == 256, "SandParamsGPU must match the std140 GLSL struct");
 static_assert(offsetof(SandParamsGPU, I_glints) == 128, "std140 offset");
 static_assert(offsetof(SandParamsGPU, SSS) == 144, "std140 offset");
 static_assert(offsetof(SandParamsGPU, sigma_g) == 160, "std140 offset");
@@ -37,6 +40,10 @@ static_assert(offsetof(SandParamsGPU, scattering) == 176, "std140 offset");
 static_assert(offsetof(SandParamsGPU, sig_b) == 192, "std140 offset");
 static_assert(offsetof(SandParamsGPU, appendix_compat) == 208, "std140 offset");
 static_assert(offsetof(SandParamsGPU, glint_model) == 216, "std140 offset");
+static_assert(offsetof(SandParamsGPU, glint_intensity) == 196, "std140 offset");
+static_assert(offsetof(SandParamsGPU, energy_consistent) == 220, "std140 offset");
+static_assert(offsetof(SandParamsGPU, glint_alpha) == 224, "std140 offset");
+static_assert(offsetof(SandParamsGPU, glint_log_density) == 240, "std140 offset");
 
 // Bits of SandParams::appendix_compat (= SAND_COMPAT_* in sand_params.glsl):
 // Appendix A behaviour where it differs from chapter 4 (shaders/sand/DIFFERENCES.md).
@@ -55,6 +62,30 @@ struct SandFeatures {
   double min_distance = 0.0;  // smallest camera distance of any shaded point in the run
   double max_distance = std::numeric_limits<double>::infinity();  // largest
   std::string debug_output = "final";  // one of SandParams::debug_output_names()
+};
+
+// The microdetail glints of Zirr & Kaplanyan 2016 (glint models grains, zirr,
+// beckmann), JSON object "glints"; names after the paper's sec. 4.5.
+struct SandGlintParams {
+  // log10 of microdetails per unit uv area, [0, 14]. Default 7: the scene
+  // meshes span uv [0, 1] once over 10 units (core/scene/mesh.h), so 1e7 per
+  // uv area is 1e5 per square unit (3.2 mm apart in a 10 m scene). The
+  // default experiment's pixels (640x360, 40 deg, 3.6-4 units away) cover
+  // ~6.6e-7 uv area face-on, 2.4x that at its 25 deg slant: 6-16
+  // microdetails, of which up to (alpha_l / alpha_g)^2 = 1 % reflect (eq. 7 at
+  // the highlight's peak): about one pixel in seven near the highlight holds
+  // a reflecting microdetail, ~7x the smooth highlight's peak (m0 / 16 vs
+  // D_g), several times the diffuse sand -- sparse, visible sparkles. 8 gives
+  // denser, dimmer ones; at 6 a microdetail spans several pixels.
+  double log_density = 7.0;
+  std::array<double, 2> alpha_g{0.3, 0.3};             // global Beckmann roughness (u, v), [1e-3, 1]
+  std::array<double, 2> relative_roughness{0.1, 0.1};  // alpha_l / alpha_g of a microdetail (u, v), [1e-3, 1]
+  double size_variation = 0.0;  // std. dev. of the per-cell microdetail size factor (zirr, Listing 1 line 16), [0, 2]
+  double intensity = 1.0;       // overall gain (sec. 4.5), [0, 1e6]; 1 = the physical BRDF
+  // Light-cone angular radius (rad), [0, 0.5]; unset ("sun" in JSON): the
+  // sun's angular radius of the frame (frame_sun_dir.w).
+  std::optional<double> light_cone;
+  double color_saturation = 0.0;  // coloured glints (sec. 4.5): 0 = white, 1 = full colour wheel, [0, 1]
 };
 
 struct SandParams {
@@ -82,6 +113,11 @@ struct SandParams {
   GlintModel glint_model = GlintModel::Kajs;  // kGlintModelNames
   std::string fresnel_half_vector = "macro_normal";  // "macro_normal" | "light_view"
   uint32_t appendix_compat = 0;  // SandCompat bits; 0 = chapter 4 everywhere
+  // false: the thesis' units (sky diffuse rho/pi L_sky^Omega = rho E/pi^2; the
+  // sun's Fresnel, transmission and kajs glint terms without 1/pi); true:
+  // radiometrically consistent (shaders/sand/DIFFERENCES.md "Units").
+  bool energy_consistent = false;
+  SandGlintParams glints;  // "glints": the grains/zirr/beckmann models
 
   // "thesis-default" (Appendix A defaults), "thesis-hdri-match" (thesis
   // sec. 6.2, Fig. 6.5/6.8), "thesis-appendix-a" (defaults + every
@@ -91,7 +127,9 @@ struct SandParams {
   // {"preset": "...", <any parameter as override>}; every value range-checked,
   // unknown keys rejected (ConfigError naming file, key and allowed range).
   // palette: array of 8 [r,g,b]; I_glints: [r,g,b]; appendix_compat: "none",
-  // "all" or an array of bit names (compat_names()).
+  // "all" or an array of bit names (compat_names()); glints: an object with
+  // log_density, alpha_g [u, v], relative_roughness [u, v], size_variation,
+  // intensity, light_cone (number or "sun"), color_saturation.
   static SandParams from_json(JsonReader& r);
   // Throws ConfigError("sand: <name>: ...") on any out-of-range value.
   void validate() const;
@@ -101,6 +139,12 @@ struct SandParams {
   static std::vector<std::string> debug_output_names();
   // Value of SAND_DEBUG for a debug output name; ConfigError if unknown.
   static int debug_output_define(const std::string& name);
+
+  // The parameters whose supersampled image is the ground truth of this
+  // material: zirr filters the grains microstructure, so its truth is
+  // grains (same microdetails, point-evaluated); every other model is its
+  // own truth.
+  SandParams reference() const;
 };
 
 // Sigmoid of eq. 4.37 in a stable form (the value the shader's sig() has).
@@ -110,10 +154,12 @@ double sand_sigmoid(double x, double a, double b);
 constexpr double kSandPruneWeight = 1e-4;
 
 // Defines ("NAME=VALUE") for shaders/sand/sand.glsl: SAND_TRANSMISSION=0
-// when T = 0; SAND_GLINTS=0 when glint_model is "none" or I_glints = 0;
-// SAND_FAR=0 when sig(max_distance) < 1e-4; SAND_CLOSE=0 when
-// 1 - sig(min_distance) < 1e-4; SAND_DEBUG=<value>. A debug output keeps
-// both fields (no close/far pruning).
+// when T = 0; SAND_GLINTS=0 when glint_model is "none", or "kajs" with
+// I_glints = 0 or the close field pruned, or another model with
+// glints.intensity = 0; SAND_GLINT_MODEL=<value of glint_model> (only that
+// model is compiled); SAND_FAR=0 when sig(max_distance) < 1e-4; SAND_CLOSE=0
+// when 1 - sig(min_distance) < 1e-4; SAND_DEBUG=<value>. A debug output
+// keeps both fields (no close/far pruning).
 std::vector<std::string> shader_defines(const SandParams& params, const SandFeatures& needs);
 
 }  // namespace glintlab::core

@@ -163,6 +163,7 @@ void SummaryWriter::finish() {
     if (v.aa == AaMethod::Ssaa) e["ssaa_grid"] = v.ssaa_grid;
     if (v.aa == AaMethod::Taa) e["taa"] = taa_json(v.taa);
     e["debug"] = v.debug;
+    e["material"] = v.material_json;  // preset and every override (glints, energy_consistent, ...)
     e["reference"] = pv.reference >= 0 ? nlohmann::json(plan_.references[size_t(pv.reference)].name) : nullptr;
     e["defines"] = pv.program.defines;
     e["gpu_ms"] = stats_json(s.gpu_ms);

@@ -28,8 +28,12 @@ void main() {
   vec3 n = nl > 1e-20 ? v_n / nl : wo;
   if (!gl_FrontFacing) n = -n;
 
-  SandSurface s = SandSurface(v_x_obj, v_x, n, wo, dist);
-  SandLight l = SandLight(frame_sun_dir.xyz, frame_sun_L.rgb, env_irradiance(n));
+  // A sample of a supersampled frame stands for 1/N of the pixel (N = 1/weight
+  // stratified samples): its footprint is the pixel's uv extent times 1/sqrt(N),
+  // so a filtered glint model integrates its own stratum, not the whole pixel.
+  float footprint = sqrt(sample_jitter_weight.z);
+  SandSurface s = sand_surface(v_x_obj, v_x, n, wo, dist, v_t, v_uv, dFdx(v_uv) * footprint, dFdy(v_uv) * footprint);
+  SandLight l = SandLight(frame_sun_dir.xyz, frame_sun_L.rgb, env_irradiance(n), frame_sun_dir.w);
   // Not clamped: every frame is scanned for NaN/Inf/negative values, and a
   // clamp here would hide a defect of the material.
   vec3 L = sand_shade(sand_params, s, l);

@@ -3,7 +3,10 @@
 // one input record of SAND_IN_STRIDE floats per item (surface, light and a
 // full parameter set), one output record of SAND_OUT_STRIDE floats with
 // every term of SandTerms, the sand_shade() result (under the SAND_* defines
-// of the run) and the Frisvad basis of the macro normal.
+// of the run) and the Frisvad basis of the macro normal. Inputs 0-63: the
+// Kajs surface, light and parameters; 64-73: energy_consistent and the glint
+// parameters of Zirr & Kaplanyan 2016; 74-86: tangent frame, uv, its
+// derivatives and the sun's angular radius.
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 layout(std430, set = 0, binding = 0) readonly buffer Inputs { float inputs[]; };
@@ -12,10 +15,11 @@ layout(push_constant) uniform Push { uint count; };
 
 #include "sand/sand.glsl"
 
-#define SAND_IN_STRIDE 64u
+#define SAND_IN_STRIDE 96u
 #define SAND_OUT_STRIDE 72u
 
 vec3 in3(uint b) { return vec3(inputs[b], inputs[b + 1u], inputs[b + 2u]); }
+vec2 in2(uint b) { return vec2(inputs[b], inputs[b + 1u]); }
 void out1(uint b, float v) { outputs[b] = v; }
 void out3(uint b, vec3 v) { outputs[b] = v.x; outputs[b + 1u] = v.y; outputs[b + 2u] = v.z; }
 
@@ -29,10 +33,16 @@ void main() {
   s.n = in3(i + 3u);
   s.wo = in3(i + 6u);
   s.dist = inputs[i + 9u];
+  s.t = in3(i + 74u);
+  s.b = in3(i + 77u);
+  s.uv = in2(i + 80u);
+  s.duv_dx = in2(i + 82u);
+  s.duv_dy = in2(i + 84u);
   SandLight l;
   l.wi = in3(i + 10u);
   l.L_i = in3(i + 13u);
   l.L_sky_omega = in3(i + 16u);
+  l.cone = inputs[i + 86u];
   SandParams p;
   p.SSS = inputs[i + 19u];
   p.R_s = inputs[i + 20u];
@@ -47,7 +57,14 @@ void main() {
   p.sigma_on = inputs[i + 29u];
   p.sig_a = inputs[i + 30u];
   p.sig_b = inputs[i + 31u];
-  p.pad0 = 0.0; p.pad1 = 0.0; p.pad2 = 0.0; p.pad3 = 0u;
+  p.glint_pad0 = 0.0; p.glint_pad1 = 0.0;
+  p.energy_consistent = uint(inputs[i + 64u]);
+  p.glint_alpha = vec4(in2(i + 65u), in2(i + 67u));
+  p.glint_log_density = inputs[i + 69u];
+  p.glint_size_variation = inputs[i + 70u];
+  p.glint_intensity = inputs[i + 71u];
+  p.glint_light_cone = inputs[i + 72u];
+  p.glint_color_saturation = inputs[i + 73u];
   p.appendix_compat = uint(inputs[i + 32u]);
   p.fresnel_half_vector = uint(inputs[i + 33u]);
   p.glint_model = uint(inputs[i + 34u]);
@@ -91,5 +108,7 @@ void main() {
   frisvad_basis(s.n, b1, b2);
   out3(o + 61u, b1);
   out3(o + 64u, b2);
-  for (uint k = 67u; k < SAND_OUT_STRIDE; ++k) out1(o + k, 0.0);
+  out1(o + 67u, r.glint_cells);
+  out3(o + 68u, r.L_g_far);
+  for (uint k = 71u; k < SAND_OUT_STRIDE; ++k) out1(o + k, 0.0);
 }

@@ -1,5 +1,7 @@
 #include "tests/core/material/reference/sand_reference.h"
 
+#include "tests/core/material/reference/glint_reference.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -34,6 +36,8 @@ Params from_gpu(const core::SandParamsGPU& g) {
   p.appendix_compat = g.appendix_compat;
   p.fresnel_half_vector = g.fresnel_half_vector;
   p.glint_model = g.glint_model;
+  p.energy_consistent = g.energy_consistent;
+  p.gpu = g;
   return p;
 }
 
@@ -248,10 +252,20 @@ vec3 L_close(const vec3& L_d_, const vec3& L_s_, const vec3& L_t_, double rho_m_
 
 vec3 L_final(const vec3& L_close_, const vec3& L_far_, double sig_) { return (1.0 - sig_) * L_close_ + sig_ * L_far_; }
 
+double sky_diffuse_scale(uint32_t energy_consistent) { return energy_consistent ? kPi : 1.0; }
+double sun_lobe_scale(uint32_t energy_consistent) { return energy_consistent ? 1.0 / kPi : 1.0; }
+
 Terms sand_terms(const Params& p, const Surface& s, const Light& l, const Features& ft) {
   Terms r;
   const uint32_t compat = p.appendix_compat;
   double cos_ni = std::max(0.0, glm::dot(s.n, l.wi));
+  const vec3 L_sky_diffuse = l.L_sky_omega * sky_diffuse_scale(p.energy_consistent);
+  const vec3 L_i_lobe = l.L_i * sun_lobe_scale(p.energy_consistent);
+  const uint32_t model = ft.glints ? p.glint_model : kGlintNone;
+  auto glint = [&](uint32_t m, glint::Slack* slack) {
+    return glint::glint_term(m, glint::from_gpu(p.gpu), s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, l.L_i,
+                             l.cone, slack);
+  };
   r.rho_n = rho_n(p);
   r.I_min = I_min(p.P, s.dist);
   r.rho_n_intensity = rho_n_intensity(r.I_min);
@@ -259,11 +273,11 @@ Terms sand_terms(const Params& p, const Surface& s, const Light& l, const Featur
   r.f_e = f_e(p.absorption, p.SSS);
   r.F_Rs = F_strength(p.R_s);
   r.f = r.F_Rs * schlick(fresnel_f0(p.ior), fresnel_cos(s.n, l.wi, s.wo, p.fresnel_half_vector, compat));
-  r.L_f = L_f(r.f, l.L_sky_omega, l.L_i, cos_ni);
+  r.L_f = L_f(r.f, l.L_sky_omega, L_i_lobe, cos_ni);
   if (ft.transmission) {
     r.T_ext = T_ext(p.T);
     r.t = transmission_t(p.T, p.R_t, s.n, s.wo, l.wi);
-    r.L_t = L_t(r.rho_n, l.L_i, r.t);
+    r.L_t = L_t(r.rho_n, L_i_lobe, r.t);
   }
   if (ft.close) {
     GrainRandom gr = grain_random(grain_cell_key(s.x_obj, p.noise_scale_f32), compat);
@@ -273,22 +287,30 @@ Terms sand_terms(const Params& p, const Surface& s, const Light& l, const Featur
     r.palette_index = palette_index(gr.xi);
     r.rho_m = rho_m(p, r.palette_index);
     r.rho_m_intensity = rho_m_intensity(r.I_min, (compat & kCompatIntensityXi1) ? gr.xi.x : gr.xi.z);
-    r.L_d = L_d(r.rho_m, r.f_s, r.f_e, l.L_i, l.L_sky_omega, cos_ni) * (1.0 - r.f) * r.T_ext;  // eq. 4.24, 4.26
-    if (ft.glints && p.glint_model == kGlintKajs) {
+    r.L_d = L_d(r.rho_m, r.f_s, r.f_e, l.L_i, L_sky_diffuse, cos_ni) * (1.0 - r.f) * r.T_ext;  // eq. 4.24, 4.26
+    if (model == kGlintKajs) {
       r.m = micro_normal(gr.xi.x, gr.xi.y, s.wo, r.face, r.face_margin);
       r.gate_x = (compat & kCompatGateXi1) ? gr.xi_pm.x : gr.xi_pm.z;
       r.gdf = GDF(r.gate_x, p.sigma_g);
       r.G_Rs = G_strength(p.R_s);
       r.g = r.G_Rs * g_glint(r.gdf, s.wo, l.wi, r.m, cos_ni);
-      r.L_g = L_g(r.g, l.L_i, l.L_sky_omega, p.I_glints, compat);
+      double lobe = sun_lobe_scale(p.energy_consistent);
+      r.L_g = L_g(r.g, l.L_i * lobe, l.L_sky_omega * lobe, p.I_glints, compat);
+    } else if (model != kGlintNone) {
+      glint::Slack slack;
+      glint::Term g = glint(model, &slack);
+      r.L_g = g.L;
+      r.glint_cells = g.cells;
+      r.glint_slack = slack.min;
     }
     r.L_s = r.L_f + r.L_g;
     r.L_close = L_close(r.L_d, r.L_s, r.L_t, r.rho_m_intensity);
   }
   if (ft.far) {
     r.L_oren = L_oren(s.n, l.wi, s.wo, p.sigma_on, compat);
-    r.L_brdf = L_brdf(r.rho_n, r.f_s, r.f_e, r.L_oren, cos_ni, l.L_i, l.L_sky_omega, 1.0 - r.f, r.T_ext);
-    r.L_far = L_far(r.L_brdf, r.L_f, r.L_t, r.rho_n_intensity);
+    r.L_brdf = L_brdf(r.rho_n, r.f_s, r.f_e, r.L_oren, cos_ni, l.L_i, L_sky_diffuse, 1.0 - r.f, r.T_ext);
+    if (model == kGlintGrains || model == kGlintZirr || model == kGlintBeckmann) r.L_g_far = glint(kGlintBeckmann, nullptr).L;
+    r.L_far = L_far(r.L_brdf, r.L_f + r.L_g_far, r.L_t, r.rho_n_intensity);
   }
   r.sig = (ft.close && ft.far) ? sig(s.dist, p.sig_a, p.sig_b) : (ft.far ? 1.0 : 0.0);
   r.L_final = L_final(r.L_close, r.L_far, r.sig);

@@ -10,6 +10,7 @@
 
 #include "core/material/sand_material.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -24,7 +25,7 @@ using uvec3 = std::array<uint32_t, 3>;
 constexpr uint32_t kCompatRandNormalized = 1u, kCompatIntensityXi1 = 2u, kCompatGateXi1 = 4u, kCompatGlintSky = 8u,
                    kCompatFresnelAbs = 16u, kCompatOrenNayarWorld = 32u;
 constexpr uint32_t kFresnelMacroNormal = 0u, kFresnelLightView = 1u;
-constexpr uint32_t kGlintNone = 0u, kGlintKajs = 1u;
+constexpr uint32_t kGlintNone = 0u, kGlintKajs = 1u, kGlintGrains = 2u, kGlintZirr = 3u, kGlintBeckmann = 4u;
 
 struct Params {
   std::array<vec3, 8> palette;
@@ -32,6 +33,8 @@ struct Params {
   double SSS, R_s, T, R_t, sigma_g, P, noise_scale, ior, scattering, absorption, sigma_on, sig_a, sig_b;
   uint32_t appendix_compat, fresnel_half_vector, glint_model;
   float noise_scale_f32;  // the fp32 scale that seeds the cells
+  uint32_t energy_consistent;
+  core::SandParamsGPU gpu;  // as packed: the glint models read their parameters from it (glint_reference.h)
 };
 // The values the GPU sees (fp32 packed) promoted to double.
 Params from_gpu(const core::SandParamsGPU& g);
@@ -40,9 +43,12 @@ struct Surface {
   std::array<float, 3> x_obj;  // fp32 object position (seeds the cells)
   vec3 n, wo;
   double dist;
+  vec3 t{1, 0, 0}, b{0, 1, 0};  // tangent frame of the glint models
+  glm::dvec2 uv{0.0}, duv_dx{0.0}, duv_dy{0.0};
 };
 struct Light {
   vec3 wi, L_i, L_sky_omega;
+  double cone = 0.0;  // the sun's angular radius
 };
 
 uvec3 pcg3d(uvec3 v);                                                  // Jarzynski & Olano 2020
@@ -85,6 +91,9 @@ vec3 L_far(const vec3& L_brdf_, const vec3& L_f_, const vec3& L_t_, double rho_n
 double sig(double x, double a, double b);                               // eq. 4.37
 vec3 L_close(const vec3& L_d_, const vec3& L_s_, const vec3& L_t_, double rho_m_intensity_);  // eq. 4.33
 vec3 L_final(const vec3& L_close_, const vec3& L_far_, double sig_);   // eq. 4.38
+// shaders/sand/energy.glsl: 1 for the thesis; pi and 1/pi when energy consistent
+double sky_diffuse_scale(uint32_t energy_consistent);
+double sun_lobe_scale(uint32_t energy_consistent);
 
 // Pruning as the SAND_* defines (all on = the full material).
 struct Features {
@@ -110,6 +119,9 @@ struct Terms {
   double face_margin = 1e300;     // best - second best cube-face dot
   double palette_margin = 1e300;  // min |xi - 0.5|
   double gate_x = 0;              // the value the Gaussian gate reads
+  double glint_cells = 0;         // zirr: cells visited
+  vec3 L_g_far{0};                // beckmann glints of the far field (grains/zirr/beckmann)
+  double glint_slack = 1e300;     // glint_reference.h Slack of the grains/zirr decisions
 };
 Terms sand_terms(const Params& p, const Surface& s, const Light& l, const Features& features = {});
 
