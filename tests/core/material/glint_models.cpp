@@ -8,7 +8,7 @@
 #include "core/material/sand_material.h"
 #include "core/util/json_check.h"
 #include "core/vk/compute_harness.h"
-#include "tests/core/material/reference/glint_reference.h"
+#include "core/material/fp64/glint_fp64.h"
 #include "tests/support/vk_test_util.h"
 
 #include <glm/geometric.hpp>

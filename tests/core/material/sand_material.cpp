@@ -5,8 +5,8 @@
 #include "core/vk/compute_harness.h"
 #include "core/util/json_check.h"
 #include "core/material/sand_material.h"
-#include "tests/core/material/reference/glint_reference.h"
-#include "tests/core/material/reference/sand_reference.h"
+#include "core/material/fp64/glint_fp64.h"
+#include "core/material/fp64/sand_fp64.h"
 #include "tests/support/vk_test_util.h"
 
 #include <glslang/Public/ResourceLimits.h>

@@ -1,6 +1,6 @@
-#include "tests/core/material/reference/sand_reference.h"
+#include "core/material/fp64/sand_fp64.h"
 
-#include "tests/core/material/reference/glint_reference.h"
+#include "core/material/fp64/glint_fp64.h"
 
 #include <glm/geometric.hpp>
 

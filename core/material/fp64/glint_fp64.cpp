@@ -1,4 +1,4 @@
-#include "tests/core/material/reference/glint_reference.h"
+#include "core/material/fp64/glint_fp64.h"
 
 #include <glm/geometric.hpp>
 
