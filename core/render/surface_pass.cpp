@@ -9,7 +9,6 @@ namespace glintlab::core {
 
 namespace {
 
-constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
@@ -104,7 +103,7 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
 // across one render-pass instance per sample; the pass clears them itself in
 // the first instance. The frame graph puts every attachment in its attachment
 // layout before the pass and expects it there after.
-RenderPass make_render_pass(const VkContext& ctx, bool motion) {
+RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, bool motion) {
   std::vector<VkAttachmentDescription> att;
   auto colour = [](VkFormat f) {
     VkAttachmentDescription a{};
@@ -117,7 +116,7 @@ RenderPass make_render_pass(const VkContext& ctx, bool motion) {
     a.initialLayout = a.finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     return a;
   };
-  att.push_back(colour(kColorFormat));
+  att.push_back(colour(color_format));
   if (motion) att.push_back(colour(kMotionFormat));
   VkAttachmentDescription depth{};
   depth.format = kDepthFormat;
@@ -163,12 +162,14 @@ RenderPass make_render_pass(const VkContext& ctx, bool motion) {
 
 SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePassOptions options)
     : ctx_(ctx), scene_(scene), opt_(std::move(options)) {
-  if (!ctx.format_supports(kColorFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
-    throw VulkanError(ctx.info().name + " cannot blend into RGBA32F attachments, which sample accumulation needs");
+  if (opt_.color_format != VK_FORMAT_R32G32B32A32_SFLOAT && opt_.color_format != VK_FORMAT_R16G16B16A16_SFLOAT)
+    throw VulkanError("surface pass: the colour target must be RGBA32F or RGBA16F");
+  if (!ctx.format_supports(opt_.color_format, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+    throw VulkanError(ctx.info().name + " cannot blend into the colour target's format, which sample accumulation needs");
   if (opt_.motion && !ctx.independent_blend())
     throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
                       "colour need");
-  render_pass_ = make_render_pass(ctx, opt_.motion);
+  render_pass_ = make_render_pass(ctx, opt_.color_format, opt_.motion);
 
   std::vector<VkDescriptorSetLayoutBinding> bindings = {
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
@@ -214,7 +215,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
 
 void SurfacePass::declare(PassIO& io) const {
   // The pass clears colour and motion itself, so their old contents are dropped.
-  io.write(opt_.color_target, kColorFormat, TargetUse::ColorAttachment);
+  io.write(opt_.color_target, opt_.color_format, TargetUse::ColorAttachment);
   if (opt_.motion) io.write(opt_.motion_target, kMotionFormat, TargetUse::ColorAttachment);
   io.write(opt_.depth_target, kDepthFormat, TargetUse::DepthAttachment);
 }

@@ -29,6 +29,9 @@ struct SurfacePassOptions {
   MaterialProgram program;
   bool sky = true;               // draw the environment where no surface is
   bool motion = false;           // also write motion vectors and distances
+  // The colour target: RGBA32F (default; fp32 accumulation) or RGBA16F
+  // (what a real-time renderer would use; stress cases check it stays finite).
+  VkFormat color_format = VK_FORMAT_R32G32B32A32_SFLOAT;
   std::string color_target = "color";
   std::string motion_target = "motion";
   std::string depth_target = "depth";

@@ -12,5 +12,6 @@ void add_compare_command(CLI::App& app, int& exit_code);   // compare (experimen
 void add_list_command(CLI::App& app, int& exit_code);      // list
 void add_check_command(CLI::App& app, int& exit_code);     // check (experiments/cli/check.cpp)
 void add_report_command(CLI::App& app, int& exit_code);    // report (experiments/report/report.cpp)
+void add_stress_command(CLI::App& app, int& exit_code);    // stress (experiments/stress/)
 
 }  // namespace glintlab
