@@ -166,6 +166,10 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
     throw VulkanError("surface pass: the colour target must be RGBA32F or RGBA16F");
   if (!ctx.format_supports(opt_.color_format, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
     throw VulkanError(ctx.info().name + " cannot blend into the colour target's format, which sample accumulation needs");
+  if (opt_.supersample < 1 || opt_.supersample > 256)
+    throw VulkanError("surface pass: supersample must be in 1..256");
+  if (opt_.supersample > 1 && (opt_.motion || opt_.color_format != VK_FORMAT_R32G32B32A32_SFLOAT))
+    throw VulkanError("surface pass: supersample needs an RGBA32F colour target and no motion vectors");
   if (opt_.motion && !ctx.independent_blend())
     throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
                       "colour need");
@@ -211,9 +215,29 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
                           mat_bytes);
   write_image_descriptor(ctx, descriptors_.set, 2, scene.env_map().view(), scene.env_sampler(),
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+
+  if (opt_.supersample > 1) {
+    std::vector<VkDescriptorSetLayoutBinding> db = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+    down_set_layout_ = make_set_layout(ctx, db);
+    down_layout_ = make_pipeline_layout(ctx, down_set_layout_.get(), 16, VK_SHADER_STAGE_COMPUTE_BIT);
+    CompiledShader cs = sc.compile("passes/downsample.comp", ShaderStage::Compute);
+    ShaderModule m = make_shader_module(ctx, cs.spirv);
+    down_pipeline_ = make_compute_pipeline(ctx, down_layout_.get(), m.get());
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    VkSampler smp;
+    vk_check(vkCreateSampler(ctx.device(), &si, nullptr, &smp), "vkCreateSampler");
+    down_sampler_ = Sampler(ctx.device(), smp);
+    down_set_ = make_descriptor_set(ctx, down_set_layout_.get(), db);
+  }
 }
 
 void SurfacePass::declare(PassIO& io) const {
+  if (opt_.supersample > 1) {  // the box filter writes the colour target; the rest is the pass's own
+    io.write(opt_.color_target, opt_.color_format, TargetUse::Storage);
+    return;
+  }
   // The pass clears colour and motion itself, so their old contents are dropped.
   io.write(opt_.color_target, opt_.color_format, TargetUse::ColorAttachment);
   if (opt_.motion) io.write(opt_.motion_target, kMotionFormat, TargetUse::ColorAttachment);
@@ -223,15 +247,36 @@ void SurfacePass::declare(PassIO& io) const {
 void SurfacePass::setup(const TargetSet& t) {
   width_ = t.width();
   height_ = t.height();
-  std::vector<VkImageView> views = {t.image(opt_.color_target).view()};
-  if (opt_.motion) views.push_back(t.image(opt_.motion_target).view());
-  views.push_back(t.image(opt_.depth_target).view());
+  const int f = opt_.supersample;
+  std::vector<VkImageView> views;
+  if (f > 1) {
+    const uint32_t hw = uint32_t(width_ * f), hh = uint32_t(height_ * f);
+    hi_color_ = Image2D(ctx_, hw, hh, opt_.color_format,
+                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    hi_depth_ = Image2D(ctx_, hw, hh, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, 1,
+                        VK_IMAGE_ASPECT_DEPTH_BIT);
+    views = {hi_color_.view(), hi_depth_.view()};
+    write_image_descriptor(ctx_, down_set_.set, 0, hi_color_.view(), down_sampler_.get(),
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    VkDescriptorImageInfo ii{VK_NULL_HANDLE, t.image(opt_.color_target).view(), VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = down_set_.set;
+    w.dstBinding = 1;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    w.pImageInfo = &ii;
+    vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+  } else {
+    views.push_back(t.image(opt_.color_target).view());
+    if (opt_.motion) views.push_back(t.image(opt_.motion_target).view());
+    views.push_back(t.image(opt_.depth_target).view());
+  }
   VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   fi.renderPass = render_pass_.get();
   fi.attachmentCount = uint32_t(views.size());
   fi.pAttachments = views.data();
-  fi.width = uint32_t(width_);
-  fi.height = uint32_t(height_);
+  fi.width = uint32_t(width_ * f);
+  fi.height = uint32_t(height_ * f);
   fi.layers = 1;
   VkFramebuffer fb;
   vk_check(vkCreateFramebuffer(ctx_.device(), &fi, nullptr, &fb), "vkCreateFramebuffer");
@@ -246,11 +291,26 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
   VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   rb.renderPass = render_pass_.get();
   rb.framebuffer = framebuffer_.get();
-  rb.renderArea = {{0, 0}, {uint32_t(width_), uint32_t(height_)}};
+  const int f = opt_.supersample;
+  const uint32_t rw = uint32_t(width_ * f), rh = uint32_t(height_ * f);
+  rb.renderArea = {{0, 0}, {rw, rh}};
   rb.clearValueCount = opt_.motion ? 3 : 2;
   rb.pClearValues = clears;
-  VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
-  VkRect2D scissor{{0, 0}, {uint32_t(width_), uint32_t(height_)}};
+  VkViewport viewport{0, 0, float(rw), float(rh), 0, 1};
+  VkRect2D scissor{{0, 0}, {rw, rh}};
+  if (f > 1) {
+    // The pass's own images: after last frame's box filter read the colour and
+    // its depth tests used the depth, their old contents are dropped.
+    transition(cmd, hi_color_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               hi_written_ ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT : VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    transition(cmd, hi_depth_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+               hi_written_ ? VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT : VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    hi_written_ = true;
+  }
   VkDeviceSize zero_offset = 0;
   VkBuffer vb = scene_.vertices().handle();
   for (size_t i = 0; i < in.samples.size(); ++i) {
@@ -281,6 +341,17 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
       vkCmdDraw(cmd, 3, 1, 0, 0);
     }
     vkCmdEndRenderPass(cmd);
+  }
+  if (f > 1) {  // box filter into the colour target (which the graph put in GENERAL for us)
+    transition(cmd, hi_color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    const int32_t push[4] = {width_, height_, f, 0};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_pipeline_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_layout_.get(), 0, 1, &down_set_.set, 0,
+                            nullptr);
+    vkCmdPushConstants(cmd, down_layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+    vkCmdDispatch(cmd, (uint32_t(width_) + 7) / 8, (uint32_t(height_) + 7) / 8, 1);
   }
 }
 

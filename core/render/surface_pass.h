@@ -11,6 +11,10 @@
 // shaders/common/motion.glsl: motion vector in pixels, distance now, distance
 // in the previous frame) from the last sample's nearest surface, and the
 // "depth" target (D32) is the last sample's depth buffer.
+//
+// With option `supersample` = f > 1 (the reference's many samples) it renders
+// at f times the resolution and box-filters into "color": f^2 samples per
+// pixel from each geometry pass, so geometry work drops by f^2.
 #pragma once
 
 #include "core/material/program.h"
@@ -32,6 +36,11 @@ struct SurfacePassOptions {
   // The colour target: RGBA32F (default; fp32 accumulation) or RGBA16F
   // (what a real-time renderer would use; stress cases check it stays finite).
   VkFormat color_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  // f > 1: the pass renders at f times the resolution into its own images
+  // and box-filters every f x f block into the colour target (one geometry
+  // pass serves f^2 samples per pixel; samples' jitters then lie within one
+  // high-resolution pixel). RGBA32F colour, no motion, no "depth" target.
+  int supersample = 1;
   std::string color_target = "color";
   std::string motion_target = "motion";
   std::string depth_target = "depth";
@@ -63,6 +72,14 @@ class SurfacePass final : public Pass {
   Buffer frame_ubo_, material_ubo_;
   DescriptorSet descriptors_;
   int width_ = 0, height_ = 0;
+  // supersample > 1: the high-resolution images and the box filter
+  Image2D hi_color_, hi_depth_;
+  DescriptorSetLayout down_set_layout_;
+  PipelineLayout down_layout_;
+  Pipeline down_pipeline_;
+  Sampler down_sampler_;
+  DescriptorSet down_set_;
+  bool hi_written_ = false;  // the high-resolution images were used by an earlier frame
 };
 
 // One frame of a graph holding only a surface pass with `options`: the

@@ -1,10 +1,12 @@
 // glintlab command line. Each command lives in its own module
 // (experiments/cli/commands.h); main only wires them up.
+#include "core/util/allocator.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
 #include "experiments/runner/version.h"
 
 int main(int argc, char** argv) {
+  glintlab::tune_allocator_for_rendering();
   CLI::App app{"glintlab: temporal anti-aliasing and glint stability experiments (headless Vulkan)"};
   app.set_version_flag("--version", std::string(glintlab::version()));
   app.require_subcommand(1);

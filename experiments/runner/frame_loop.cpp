@@ -35,7 +35,7 @@ struct FrameLoop::Impl {
       variants.push_back(build_variant(ctx, scene, spec.width, spec.height, *v.spec, v.program));
     if (plan.measure) {
       for (const auto& r : plan.references)
-        references.push_back(build_reference(ctx, scene, spec.width, spec.height, r.program));
+        references.push_back(build_reference(ctx, scene, spec.width, spec.height, r.program, spec.reference.grid));
       motion = build_motion(ctx, scene, spec.width, spec.height);
       measure = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
       trackers.resize(plan.variants.size());
@@ -102,7 +102,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       if (img) {
         rec.cached = true;
       } else {
-        in.samples = core::samples_for(spec.path, k, w, h, reference_offsets(spec.reference.grid));
+        in.samples = core::samples_for(spec.path, k, w, h, supersampling(spec.reference.grid, w, h, kReferencePatternSeed).offsets);
         auto t0 = Clock::now();
         core::FrameResult fr = m.references[r].graph->execute(in);
         rec.wall_ms = ms_since(t0);
@@ -133,7 +133,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       rec.frame = k;
       rec.time_s = cam.time;
       rec.sequence_start = k == 0 || cam.cut;
-      rec.spp = int(offsets.size());
+      rec.spp = pv.spec->samples_per_pixel();
       rec.gpu_ms = fr.gpu_ms;
       rec.passes = fr.timings;
       const Image& img = fr.images.at(m.variants[i].output);

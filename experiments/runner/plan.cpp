@@ -41,7 +41,7 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
                                           : "reference-" + plan.variants[size_t(r.variants.front())].spec->name;
 
   core::ContentHash h;
-  h.add(std::string_view("glintlab-reference-v3"))
+  h.add(std::string_view("glintlab-reference-v4"))  // v4: supersampled passes (supersampling())
       .add(int64_t(kReferencePatternSeed))
       .add(spec.source.at("scene").dump())
       .add(spec.working_space)

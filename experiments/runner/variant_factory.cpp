@@ -14,7 +14,7 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
   o.program = program;
   switch (v.aa) {
     case AaMethod::None:
-    case AaMethod::Ssaa:
+    case AaMethod::Ssaa:  // one geometry pass per sample: a jittered stratified pattern (finer than an ordered grid)
       r.output = "color";
       r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
       break;
@@ -29,13 +29,31 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
   return r;
 }
 
+Supersampling supersampling(int grid, int width, int height, uint32_t seed) {
+  Supersampling s;
+  if (grid <= 1) {
+    s.offsets = {glm::vec2(0.0f)};
+    return s;
+  }
+  constexpr double kMaxPixels = double(1 << 22);
+  for (int f = grid; f >= 1; --f)
+    if (grid % f == 0 && double(f) * f * width * height <= kMaxPixels) {
+      s.factor = f;
+      break;
+    }
+  for (const glm::vec2& o : core::stratified_offsets(grid / s.factor, seed))
+    s.offsets.push_back(o / float(s.factor));
+  return s;
+}
+
 RenderSetup build_reference(const core::VkContext& ctx, const core::SceneGpu& scene, int width, int height,
-                            const core::MaterialProgram& program) {
+                            const core::MaterialProgram& program, int grid) {
   RenderSetup r;
   r.graph = std::make_unique<core::FrameGraph>(ctx, width, height);
   core::SurfacePassOptions o;
   o.name = "reference";
   o.program = program;
+  o.supersample = supersampling(grid, width, height, kReferencePatternSeed).factor;
   r.output = "color";
   r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
   r.graph->build({r.output});
@@ -65,8 +83,5 @@ std::vector<glm::vec2> variant_offsets(const VariantSpec& v, int k) {
   return {glm::vec2(0.0f)};
 }
 
-std::vector<glm::vec2> reference_offsets(int grid) {
-  return grid <= 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(grid, kReferencePatternSeed);
-}
 
 }  // namespace glintlab

@@ -13,8 +13,9 @@
 //   4. Every per-frame metric of one 640x360 variant frame: ms per metric.
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
-// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--no-reference]
+// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--only surface|reference|taa|metrics]
 #include "core/material/program.h"
+#include "core/util/allocator.h"
 #include "core/render/frame_graph.h"
 #include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
@@ -78,20 +79,22 @@ core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int 
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (!std::getenv("GLINTLAB_BENCH_DEFAULT_MALLOC")) tune_allocator_for_rendering();  // as the glintlab CLI does
   std::string device;
   int frames = 10;
-  bool reference = true;
+  std::string only;
   std::vector<std::pair<int, int>> sizes = {{640, 360}, {1280, 720}};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--device" && i + 1 < argc) device = argv[++i];
     else if (a == "--frames" && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--no-reference") reference = false;
+    else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--size" && i + 2 < argc) {
       sizes = {{std::atoi(argv[i + 1]), std::atoi(argv[i + 2])}};
       i += 2;
     } else {
-      std::cerr << "usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--no-reference]\n";
+      std::cerr << "usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] "
+                   "[--only surface|reference|taa|metrics]\n";
       return 2;
     }
   }
@@ -129,7 +132,9 @@ int main(int argc, char** argv) {
   minimal.glint_model = core::GlintModel::None;
   cases.push_back({"far only, T = 0, no glints", sand(minimal, 1e6, 1e30)});
 
+  auto section = [&](const char* name) { return only.empty() || only == name; };
   for (auto [w, h] : sizes) {
+    if (!section("surface")) break;
     const core::FrameInputs one = inputs(spec, data, w, h, {glm::vec2(0.0f)});
     std::printf("\nsurface pass, %dx%d (%.3f Mpix), sky on\n", w, h, double(w) * h * 1e-6);
     std::printf("  %-34s %9s %9s %7s %11s %11s\n", "variant", "ms/frame", "Mpix/s", "ratio", "material ms",
@@ -153,33 +158,48 @@ int main(int argc, char** argv) {
     }
   }
 
-  // ---- 2. the reference: cost per sample, and a geometry-bound case
-  if (reference) {
+  // ---- 2. the reference: cost per sample, and a geometry-bound case. The
+  // runner's way (supersampled passes, experiments/runner/variant_factory.h)
+  // beside one geometry pass per sample (what it did before), same samples count.
+  if (section("reference")) {
     const core::MaterialProgram ref = core::sand_program(base, data.range, core::ProgramRole::Reference);
     struct RefCase {
       int w, h, grid;
     };
     std::printf("\nreference (micro model, grid x grid stratified samples)\n");
-    std::printf("  %-26s %11s %13s %13s %9s\n", "case", "ms/frame", "ms/sample", "1-spp ms", "ratio");
-    for (RefCase rc : {RefCase{640, 360, 8}, RefCase{16, 9, 64}}) {
+    std::printf("  %-20s %-28s %11s %11s %11s %7s\n", "case", "method", "ms/frame", "ms/sample", "1-spp ms",
+                "ratio");
+    for (RefCase rc : {RefCase{640, 360, 16}, RefCase{16, 9, 64}}) {
       core::SurfacePassOptions o;
       o.program = ref;
-      core::SurfaceRenderer r(ctx, scene, rc.w, rc.h, o);
+      core::SurfaceRenderer one_spp(ctx, scene, rc.w, rc.h, o);
       const core::FrameInputs one = inputs(spec, data, rc.w, rc.h, {glm::vec2(0.0f)});
-      const core::FrameInputs many = inputs(spec, data, rc.w, rc.h, reference_offsets(rc.grid));
-      r.render(one.uniforms, one.samples);
-      std::vector<double> t1, tn;
-      for (int i = 0; i < std::max(3, frames / 2); ++i) t1.push_back(r.render(one.uniforms, one.samples).gpu_ms);
-      for (int i = 0; i < 2; ++i) tn.push_back(r.render(many.uniforms, many.samples).gpu_ms);
-      const double n = double(rc.grid) * rc.grid, per = median(tn) / n;
+      one_spp.render(one.uniforms, one.samples);
+      std::vector<double> t1;
+      for (int i = 0; i < std::max(3, frames / 2); ++i) t1.push_back(one_spp.render(one.uniforms, one.samples).gpu_ms);
+      const Supersampling sampling = supersampling(rc.grid, rc.w, rc.h, kReferencePatternSeed);
+      RenderSetup fast = build_reference(ctx, scene, rc.w, rc.h, ref, rc.grid);
+      const core::FrameInputs many = inputs(spec, data, rc.w, rc.h, sampling.offsets);
+      const core::FrameInputs every = inputs(spec, data, rc.w, rc.h, core::stratified_offsets(rc.grid, 1u));
+      const double n = double(rc.grid) * rc.grid;
       char label[64];
       std::snprintf(label, sizeof label, "%dx%d at %d spp", rc.w, rc.h, int(n));
-      std::printf("  %-26s %11.1f %13.4f %13.4f %9.2f\n", label, median(tn), per, median(t1), per / median(t1));
+      auto row = [&](const char* method, double ms) {
+        std::printf("  %-20s %-28s %11.1f %11.4f %11.4f %7.2f\n", label, method, ms, ms / n, median(t1),
+                    ms / n / median(t1));
+      };
+      std::vector<double> tf;
+      for (int i = 0; i < 2; ++i) tf.push_back(fast.graph->execute(many).gpu_ms);
+      char method[64];
+      std::snprintf(method, sizeof method, "supersampled (f = %d, %zu passes)", sampling.factor, sampling.offsets.size());
+      row(method, median(tf));
+      // One geometry pass per sample (1 frame: at 4096 spp it takes half a minute).
+      row("one pass per sample", one_spp.render(every.uniforms, every.samples).gpu_ms);
     }
   }
 
   // ---- 3. TAA resolve vs the surface pass of its frame
-  {
+  if (section("taa")) {
     const int w = sizes.front().first, h = sizes.front().second;
     RenderSetup taa = build_variant(ctx, scene, w, h, spec.variants[1], core::sand_program(base, data.range,
                                                                                            core::ProgramRole::Variant));
@@ -196,7 +216,7 @@ int main(int argc, char** argv) {
   }
 
   // ---- 4. metrics of one variant frame
-  {
+  if (section("metrics")) {
     const int w = 640, h = 360;
     core::SurfacePassOptions o;
     o.program = core::sand_program(base, data.range, core::ProgramRole::Variant);
