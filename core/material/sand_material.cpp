@@ -233,6 +233,11 @@ SandParams SandParams::from_json(JsonReader& r) {
 SandParams SandParams::reference() const {
   SandParams p = *this;
   if (p.glint_model == GlintModel::Zirr) p.glint_model = GlintModel::Grains;
+  // The truth has no far field and no transition (SAND_FAR=0): the sigmoid's
+  // parameters do not change it, so variants that differ only there share it.
+  const SandParams defaults;
+  p.sigmoid_a = defaults.sigmoid_a;
+  p.sigmoid_b = defaults.sigmoid_b;
   return p;
 }
 

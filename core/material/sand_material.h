@@ -143,7 +143,8 @@ struct SandParams {
   // The parameters whose supersampled image is the ground truth of this
   // material: zirr filters the grains microstructure, so its truth is
   // grains (same microdetails, point-evaluated); every other model is its
-  // own truth.
+  // own truth. The close-to-far transition's sigmoid (not part of the truth)
+  // is reset, so variants that differ only in it share one reference.
   SandParams reference() const;
 };
 

@@ -36,9 +36,18 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
     }
     plan.variants.push_back(std::move(pv));
   }
-  for (auto& r : plan.references)
+  // Names: "reference" alone; else by the truth's glint model ("reference-grains"), and by the first
+  // variant where two references share a model.
+  auto model_of = [&](const RunPlan::Reference& r) {
+    return std::string(enum_name(core::kGlintModelNames, plan.variants[size_t(r.variants.front())].params.reference().glint_model));
+  };
+  for (auto& r : plan.references) {
+    int same_model = 0;
+    for (const auto& o : plan.references) same_model += model_of(o) == model_of(r);
     r.name = plan.references.size() == 1 ? "reference"
-                                          : "reference-" + plan.variants[size_t(r.variants.front())].spec->name;
+             : same_model == 1           ? "reference-" + model_of(r)
+                                         : "reference-" + plan.variants[size_t(r.variants.front())].spec->name;
+  }
 
   core::ContentHash h;
   h.add(std::string_view("glintlab-reference-v4"))  // v4: supersampled passes (supersampling())
