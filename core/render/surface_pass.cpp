@@ -25,7 +25,7 @@ VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShader
 // surface is first drawn depth-only, then shaded with depth test EQUAL (only
 // the nearest fragment survives, whatever the draw order), then the sky fills
 // what is still at the far plane.
-enum class Draw { DepthPrepass, Shade, Sky };
+enum class Draw { DepthPrepass, Shade, Sky, ShadeOpaque };
 
 Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
                                 VkShaderModule fs, Draw draw, bool motion) {
@@ -63,12 +63,14 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = draw == Draw::DepthPrepass ? VK_TRUE : VK_FALSE;
-  ds.depthCompareOp = draw == Draw::DepthPrepass ? VK_COMPARE_OP_LESS
-                      : draw == Draw::Shade      ? VK_COMPARE_OP_EQUAL
-                                                 : VK_COMPARE_OP_LESS_OR_EQUAL;
+  const bool writes_depth = draw == Draw::DepthPrepass || draw == Draw::ShadeOpaque;
+  ds.depthWriteEnable = writes_depth ? VK_TRUE : VK_FALSE;
+  ds.depthCompareOp = writes_depth         ? VK_COMPARE_OP_LESS
+                      : draw == Draw::Shade ? VK_COMPARE_OP_EQUAL
+                                            : VK_COMPARE_OP_LESS_OR_EQUAL;
   VkPipelineColorBlendAttachmentState blend[2] = {};
-  blend[0].blendEnable = draw == Draw::DepthPrepass ? VK_FALSE : VK_TRUE;  // accumulate weighted samples
+  // Accumulate weighted samples; one opaque sample overwrites what a farther fragment wrote.
+  blend[0].blendEnable = draw == Draw::DepthPrepass || draw == Draw::ShadeOpaque ? VK_FALSE : VK_TRUE;
   blend[0].srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
   blend[0].dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
   blend[0].colorBlendOp = VK_BLEND_OP_ADD;
@@ -192,8 +194,8 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   ShaderModule vsm = make_shader_module(ctx, vs.spirv), fsm = make_shader_module(ctx, fs.spirv);
   depth_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), VK_NULL_HANDLE,
                                            Draw::DepthPrepass, opt_.motion);
-  surface_pipeline_ =
-      make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), fsm.get(), Draw::Shade, opt_.motion);
+  surface_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), fsm.get(),
+                                             opt_.single_sample ? Draw::ShadeOpaque : Draw::Shade, opt_.motion);
   if (opt_.sky) {
     std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0")};
     CompiledShader svs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
@@ -285,6 +287,9 @@ void SurfacePass::setup(const TargetSet& t) {
 
 void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet&) {
   if (in.samples.empty()) throw VulkanError("surface pass \"" + opt_.name + "\": a frame needs at least one sample");
+  if (opt_.single_sample && in.samples.size() != 1)
+    throw VulkanError("surface pass \"" + opt_.name + "\": single_sample, but the frame has " +
+                      std::to_string(in.samples.size()) + " samples");
   frame_ubo_.upload(&in.uniforms, sizeof in.uniforms);
   VkClearValue clears[3] = {};
   clears[opt_.motion ? 2 : 1].depthStencil = {1.0f, 0};
@@ -332,8 +337,10 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
                        sizeof(SamplePush), &in.samples[i]);
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero_offset);
     vkCmdBindIndexBuffer(cmd, scene_.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.get());
-    vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
+    if (!opt_.single_sample) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.get());
+      vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
+    }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surface_pipeline_.get());
     vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
     if (opt_.sky) {

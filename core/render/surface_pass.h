@@ -5,7 +5,8 @@
 // normal frame, N jittered ones for supersampling or the reference. Each
 // sample is a depth pre-pass, then shading with depth test EQUAL, so exactly
 // the nearest surface is shaded and accumulated whatever the draw order; then
-// (option `sky`) the environment fills what no surface covers.
+// (option `sky`) the environment fills what no surface covers. With option
+// `single_sample` one opaque draw replaces the two (see there).
 //
 // With option `motion` it also writes the "motion" target (RGBA32F, layout in
 // shaders/common/motion.glsl: motion vector in pixels, distance now, distance
@@ -41,6 +42,11 @@ struct SurfacePassOptions {
   // pass serves f^2 samples per pixel; samples' jitters then lie within one
   // high-resolution pixel). RGBA32F colour, no motion, no "depth" target.
   int supersample = 1;
+  // One sample per frame (no AA, TAA, motion): no depth pre-pass; the shading
+  // draw tests LESS and writes depth and colour unblended, so the nearest
+  // surface's colour is what remains (a farther fragment drawn first is
+  // shaded, then overwritten: overdraw instead of a second geometry pass).
+  bool single_sample = false;
   std::string color_target = "color";
   std::string motion_target = "motion";
   std::string depth_target = "depth";

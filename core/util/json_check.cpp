@@ -27,7 +27,7 @@ nlohmann::json read_json_file(const std::string& path) {
   if (!in) throw ConfigError(path + ": cannot open file");
   try {
     return nlohmann::json::parse(in, nullptr, true, /*ignore_comments=*/true);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers beyond a double (1e400)
     throw ConfigError(path + ": malformed JSON: " + e.what());
   }
 }

@@ -148,6 +148,12 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";
 
   metrics::ColorManager cm(opt.ocio_config.empty() ? metrics::ColorManager::default_config_path() : opt.ocio_config);
+  try {
+    check_color_names(spec, cm);  // before anything is written or rendered
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
   const fs::path out_dir(opt.out_dir);
   fs::create_directories(out_dir);
 

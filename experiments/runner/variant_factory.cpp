@@ -67,6 +67,7 @@ RenderSetup build_motion(const core::VkContext& ctx, const core::SceneGpu& scene
   o.name = "motion";
   o.program = core::geometry_only_program();
   o.motion = true;
+  o.single_sample = true;  // measured: one opaque draw beats pre-pass + EQUAL for a trivial shader
   r.output = "motion";
   r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
   r.graph->build({r.output});

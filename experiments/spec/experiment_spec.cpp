@@ -30,7 +30,8 @@ core::CameraPath load_path(JsonReader& r, const std::string& key, const std::str
   if (std::find(builtins.begin(), builtins.end(), s) != builtins.end()) return core::CameraPath::builtin(s);
   for (fs::path base : {fs::path(file).parent_path(), fs::path(GLINTLAB_EXPERIMENT_DIR)}) {
     fs::path p = base / s;
-    if (fs::is_regular_file(p)) return core::CameraPath::load(p.string());
+    std::error_code ec;  // an impossible name (too long, a loop) is just not a file here
+    if (fs::is_regular_file(p, ec)) return core::CameraPath::load(p.string());
   }
   std::string allowed;
   for (const auto& b : builtins) allowed += (allowed.empty() ? "" : ", ") + b;
@@ -200,9 +201,10 @@ std::vector<std::string> builtin_experiment_names() {
 }
 
 std::string resolve_experiment_path(const std::string& name_or_path) {
-  if (fs::is_regular_file(name_or_path)) return name_or_path;
+  std::error_code ec;  // an impossible name (too long, a loop) is just not a file
+  if (fs::is_regular_file(name_or_path, ec)) return name_or_path;
   fs::path p = fs::path(GLINTLAB_EXPERIMENT_DIR) / (name_or_path + ".json");
-  if (fs::is_regular_file(p)) return p.string();
+  if (fs::is_regular_file(p, ec)) return p.string();
   std::string list;
   for (const auto& n : builtin_experiment_names()) list += (list.empty() ? "" : ", ") + n;
   throw ConfigError(name_or_path + ": no such experiment file, and not a built-in experiment (" + list + ")");

@@ -1,6 +1,10 @@
 #include "experiments/spec/scene_setup.h"
 
 #include "core/scene/mesh.h"
+#include "core/util/json_check.h"
+#include "metrics/color/measurement_space.h"
+
+#include <algorithm>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -90,6 +94,37 @@ core::SandFeatures distance_range(const ExperimentSpec& spec, const core::Mesh& 
   f.min_distance = lo;
   f.max_distance = hi;
   return f;
+}
+
+void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
+  auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s;
+  };
+  auto fail = [&](const std::string& key, const std::string& what) {
+    throw ConfigError(spec.file + ": " + key + ": " + what + " (OCIO config " + cm.config_path() + ")");
+  };
+  auto space = [&](const std::string& key, const std::string& name) {
+    if (!name.empty() && !cm.has_space(name)) fail(key, "unknown colour space \"" + name + "\"");
+  };
+  auto display_view = [&](const std::string& key, const std::string& display, const std::string& view) {
+    const auto ds = cm.displays();
+    if (std::find(ds.begin(), ds.end(), display) == ds.end())
+      fail(key, "unknown display \"" + display + "\"; allowed: " + join(ds));
+    const auto vs = cm.views(display);
+    if (std::find(vs.begin(), vs.end(), view) == vs.end())
+      fail(key, "display \"" + display + "\" has no view \"" + view + "\"; allowed: " + join(vs));
+  };
+  display_view("output.display/view", spec.output.display, spec.output.view);
+  if (!spec.metric_options.display_view.empty()) {
+    const auto [d, v] = metrics::parse_display_view(spec.metric_options.display_view);
+    display_view("metric_options.view", d, v);
+  }
+  space("scene.sky.sun_color_space", spec.sky.sun.color_space);
+  space("scene.sky.hdri_color_space", spec.sky.hdri_color_space);
+  for (size_t i = 0; i < spec.variants.size(); ++i)
+    space("variants[" + std::to_string(i) + "].material.palette_space", spec.variants[i].material.palette_space);
 }
 
 SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& cm) {

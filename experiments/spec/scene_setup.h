@@ -28,6 +28,11 @@ core::SandParams to_working_space(core::SandParams p, const std::string& working
 core::FrameUniforms frame_uniforms(const core::FrameCamera& cam, const core::Environment& env, int width, int height,
                                    size_t env_mip_levels, const core::ObjectMotion& motion = {});
 
+// Checks every colour-space, display and view name of the spec against the
+// OCIO config before anything renders: a ConfigError names the file, the key
+// and the names the config has.
+void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& cm);
+
 // Everything about the scene that is built once per run, CPU side.
 struct SceneData {
   core::Mesh mesh;

@@ -61,6 +61,7 @@ const char* kScene = R"({
 struct Case {
   std::string name;
   core::MaterialProgram program;
+  bool single_sample = true;  // one opaque draw (as the runner renders 1-spp frames)
 };
 
 double median(std::vector<double> v) {
@@ -116,6 +117,8 @@ int main(int argc, char** argv) {
   std::vector<Case> cases;
   cases.push_back({"floor (geometry and passes only)", core::geometry_only_program()});
   cases.push_back({"full (close+far+transition)", sand(base, 0.0, 1e30)});
+  cases.push_back({"floor, depth pre-pass + EQUAL", core::geometry_only_program(), false});
+  cases.push_back({"full, depth pre-pass + EQUAL", sand(base, 0.0, 1e30), false});
   cases.push_back({"as the scene needs", core::sand_program(base, data.range, core::ProgramRole::Variant)});
   core::SandParams no_t = base;
   no_t.T = 0;
@@ -143,6 +146,7 @@ int main(int argc, char** argv) {
     for (const Case& c : cases) {
       core::SurfacePassOptions o;
       o.program = c.program;
+      o.single_sample = c.single_sample;
       passes.push_back(std::make_unique<core::SurfaceRenderer>(ctx, scene, w, h, o));
       for (int i = 0; i < 2; ++i) passes.back()->render(one.uniforms, one.samples);  // warm-up (JIT, caches)
     }

@@ -208,6 +208,21 @@ TEST(ExperimentSpec, LoadRejectsMalformedJsonNamingTheFile) {
   }
 }
 
+// Found by the fuzzer (tests/fuzz/crashes/): a number beyond a double, and a
+// camera-path name no file system accepts, are bad input like any other.
+TEST(ExperimentSpec, FuzzFindingsAreConfigErrors) {
+  for (const char* name : {"experiment-number-overflow.json", "experiment-camera-path-name-too-long.json"}) {
+    const std::string path = std::string(GLINTLAB_SOURCE_DIR) + "/tests/fuzz/crashes/" + name;
+    try {
+      ExperimentSpec::load(path);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(glintlab::resolve_experiment_path(std::string(300, 'x')), ConfigError);
+}
+
 TEST(ExperimentSpec, LoadErrorsNameTheLoadedFile) {
   json j = minimal();
   j["variants"][0]["aa"] = "fxaa";
