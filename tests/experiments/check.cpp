@@ -4,6 +4,7 @@
 // own sense.
 #include "experiments/cli/check.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -83,8 +84,8 @@ TEST(Check, TolerancesMissingVariantsAndNonFinitePixels) {
 }
 
 TEST(Check, CommandLineExitCodes) {
-  const auto dir = std::filesystem::temp_directory_path() / ("glintlab_check_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const glintlab::test::TempDir tmp("check");
+  const auto dir = tmp.path();
   json worse = summary();
   worse["variants"][0]["metrics"]["flicker_ratio"]["mean"] = 4.0;
   std::ofstream(dir / "base.json") << summary().dump();
@@ -101,5 +102,4 @@ TEST(Check, CommandLineExitCodes) {
   std::ostringstream out4, err4;
   EXPECT_EQ(run_check((dir / "worse.json").string(), (dir / "base.json").string(), {"flicker_ratio"}, out4, err4), 2);
   EXPECT_EQ(run_check((dir / "nope.json").string(), (dir / "base.json").string(), {}, out4, err4), 2);
-  std::filesystem::remove_all(dir);
 }

@@ -1,5 +1,6 @@
 // `glintlab compare` logic end to end: real image files in a temp dir, the shipped OCIO config and the
 // metric registry.
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,14 +56,14 @@ Image pattern(int w, int h) {
 class CompareTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("glintlab_compare_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
+    tmp_ = std::make_unique<glintlab::test::TempDir>(std::string("compare_") +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = tmp_->path();
     de_ = delta_e_2000_name();
     ASSERT_FALSE(de_.empty()) << "no CIEDE2000 metric in the registry";
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override { tmp_.reset(); }
+  std::unique_ptr<glintlab::test::TempDir> tmp_;
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
   int run(CompareOptions o) {
     out_.str("");

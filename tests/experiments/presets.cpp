@@ -5,6 +5,7 @@
 #include "core/material/sand_material.h"
 #include "experiments/runner/runner.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,9 +17,8 @@ namespace fs = std::filesystem;
 using namespace glintlab;
 
 TEST(Presets, EveryPresetRendersFiniteAndNonNegativeOnEveryMesh) {
-  fs::path dir = fs::temp_directory_path() / "glintlab_presets";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const glintlab::test::TempDir tmp("presets");
+  const fs::path dir = tmp.path();
   nlohmann::json variants = nlohmann::json::array();
   for (const auto& p : core::SandParams::preset_names()) {
     variants.push_back({{"name", p}, {"material", {{"preset", p}}}});

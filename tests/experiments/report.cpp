@@ -9,6 +9,7 @@
 #include "experiments/report/report.h"
 #include "experiments/runner/runner.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -27,13 +28,6 @@ using namespace glintlab;
 using nlohmann::json;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("glintlab_report_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -172,7 +166,8 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
   const std::string chromium = chromium_path();
   ASSERT_FALSE(chromium.empty()) << "chromium not found at /usr/bin/chromium: this test opens report.html in a real "
                                     "headless browser; install Debian's chromium package (./bootstrap.sh does)";
-  const fs::path dir = fresh_dir("run");
+  const glintlab::test::TempDir dir_tmp("run");
+  const fs::path dir = dir_tmp.path();
   const fs::path out = tiny_run(dir);
   ASSERT_TRUE(fs::exists(out / "summary.json"));
   fs::remove(out / "report.html");
@@ -208,7 +203,8 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
   EXPECT_TRUE(fs::exists(out / "figures" / "glint_crops.png"));
 
   // The browser: every image decodes, every plot lays out.
-  const fs::path work = fresh_dir("browser");
+  const glintlab::test::TempDir work_tmp("browser");
+  const fs::path work = work_tmp.path();
   write_text(work / "check.html", with_checker(report));
   int rc = 0;
   const std::string dom = dump_dom(work / "check.html", work, work / "chromium.err", rc);
@@ -239,7 +235,8 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
 }
 
 TEST(Report, BadInputIsExitCode2) {
-  const fs::path dir = fresh_dir("bad");
+  const glintlab::test::TempDir dir_tmp("bad");
+  const fs::path dir = dir_tmp.path();
   std::ostringstream log;
   EXPECT_EQ(write_report((dir / "no-such-dir").string(), log), 2);
   EXPECT_NE(log.str().find("no such directory"), std::string::npos) << log.str();
@@ -264,7 +261,8 @@ TEST(Report, BadInputIsExitCode2) {
 
 TEST(Report, MissingPythonOrModuleIsExitCode4AndNamesThePackage) {
   // The interpreter and its modules are checked before the run is read.
-  const fs::path out = fresh_dir("no-python");
+  const glintlab::test::TempDir out_tmp("no-python");
+  const fs::path out = out_tmp.path();
   write_text(out / "summary.json", R"({"schema": "glintlab-summary/1", "variants": []})");
   {
     ScopedEnv py("GLINTLAB_PYTHON", "/nonexistent/python3");
@@ -274,7 +272,8 @@ TEST(Report, MissingPythonOrModuleIsExitCode4AndNamesThePackage) {
   }
   {
     // A matplotlib that fails to import shadows the real one.
-    const fs::path fake = fresh_dir("fake-modules");
+    const glintlab::test::TempDir fake_tmp("fake-modules");
+    const fs::path fake = fake_tmp.path();
     fs::create_directories(fake / "matplotlib");
     write_text(fake / "matplotlib" / "__init__.py", "raise ImportError('hidden by the glintlab report test')\n");
     ScopedEnv path("PYTHONPATH", fake.string());

@@ -5,6 +5,7 @@
 #include "experiments/runner/reference_cache.h"
 #include "experiments/runner/runner.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -22,13 +23,6 @@ namespace fs = std::filesystem;
 using namespace glintlab;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("glintlab_resume_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 const char* kExperiment = R"({
   "name": "resume-test",
@@ -96,7 +90,8 @@ size_t journal_lines(const fs::path& dir) {
 }  // namespace
 
 TEST(Resume, KilledRunResumesToTheSameRowsAndMetrics) {
-  const fs::path root = fresh_dir("kill");
+  const glintlab::test::TempDir root_tmp("kill");
+  const fs::path root = root_tmp.path();
   std::ofstream(root / "e.json") << kExperiment;
   // The uninterrupted run.
   std::ostringstream log;
@@ -154,7 +149,8 @@ TEST(Resume, KilledRunResumesToTheSameRowsAndMetrics) {
 }
 
 TEST(Resume, ShardsMergeIntoTheSingleRun) {
-  const fs::path root = fresh_dir("shards");
+  const glintlab::test::TempDir root_tmp("shards");
+  const fs::path root = root_tmp.path();
   std::ofstream(root / "e.json") << kExperiment;
   std::ostringstream log;
   ASSERT_EQ(run_experiment(options(root / "whole", root / "e.json", root / "cache"), log), 0) << log.str();
@@ -189,7 +185,8 @@ TEST(Resume, ShardsMergeIntoTheSingleRun) {
 }
 
 TEST(ReferenceCache, ConcurrentWritersNeverCorruptAnEntry) {
-  const fs::path dir = fresh_dir("cache");
+  const glintlab::test::TempDir dir_tmp("cache");
+  const fs::path dir = dir_tmp.path();
   ReferenceCache cache(dir.string());
   Image img(32, 16, 4);
   for (size_t i = 0; i < img.data.size(); ++i) img.data[i] = float(i) * 0.25f;

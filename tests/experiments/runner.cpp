@@ -5,6 +5,7 @@
 #include "experiments/runner/runner.h"
 #include "metrics/color/image_io.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,13 +17,6 @@ namespace fs = std::filesystem;
 using namespace glintlab;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("glintlab_runner_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   std::ifstream in(p);
@@ -54,7 +48,8 @@ const char* kTiny = R"({
 }  // namespace
 
 TEST(Runner, RunWritesEveryMetricForEveryFrameAndVariant) {
-  fs::path dir = fresh_dir("run");
+  const glintlab::test::TempDir dir_tmp("run");
+  const fs::path dir = dir_tmp.path();
   std::ofstream(dir / "tiny.json") << kTiny;
   RunOptions opt;
   opt.report = false;  // the report has its own test (report.cpp)
@@ -137,7 +132,8 @@ TEST(Runner, RunWritesEveryMetricForEveryFrameAndVariant) {
 }
 
 TEST(Runner, BadExperimentIsExitCodeTwoWithFileAndKey) {
-  fs::path dir = fresh_dir("bad");
+  const glintlab::test::TempDir dir_tmp("bad");
+  const fs::path dir = dir_tmp.path();
   nlohmann::json j = nlohmann::json::parse(kTiny);
   j["variants"][1]["ssaa_grid"] = 99;
   std::ofstream(dir / "bad.json") << j.dump();
@@ -153,7 +149,8 @@ TEST(Runner, BadExperimentIsExitCodeTwoWithFileAndKey) {
 }
 
 TEST(ReferenceCache, RoundTripIsExactAndTruncationIsDetected) {
-  fs::path dir = fresh_dir("cache");
+  const glintlab::test::TempDir dir_tmp("cache");
+  const fs::path dir = dir_tmp.path();
   ReferenceCache cache(dir.string());
   Image img(5, 3, 4);
   for (size_t i = 0; i < img.data.size(); ++i) img.data[i] = float(i) * 0.37f - 3.0f;
@@ -175,7 +172,8 @@ TEST(Runner, StaticCameraGivesIdenticalFramesAndNoFlicker) {
   // With a static camera every frame is the same picture: the reference is a
   // fixed quadrature and SSAA a fixed pattern, so nothing may change between
   // frames and the flicker ratio is exactly 1 (both sequences static).
-  fs::path dir = fresh_dir("static");
+  const glintlab::test::TempDir dir_tmp("static");
+  const fs::path dir = dir_tmp.path();
   nlohmann::json j = nlohmann::json::parse(kTiny);
   j["camera_path"] = {{"type", "static"}, {"fps", 30}, {"frames", 3}, {"position", {0.5, 1.5, 3.0}},
                       {"target", {0, 0, 0}}, {"fov", 40}};

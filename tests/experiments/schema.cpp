@@ -4,6 +4,7 @@
 #include "experiments/runner/output_writers.h"
 #include "experiments/runner/schema.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -67,8 +68,8 @@ TEST(Schema, HeaderAndRowsComeFromOneDefinition) {
 
   // The CSV writer writes exactly the schema's header and rows, sorted by
   // variant then frame whatever the arrival order, atomically.
-  const auto dir = std::filesystem::temp_directory_path() / ("glintlab_schema_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const glintlab::test::TempDir tmp("schema");
+  const auto dir = tmp.path();
   CsvWriter csv(dir / "frames.csv", schema);
   csv.frame(record(1, 1));
   csv.frame(record(0, 1));
@@ -87,7 +88,6 @@ TEST(Schema, HeaderAndRowsComeFromOneDefinition) {
   }
   EXPECT_EQ(order, (std::vector<std::pair<std::string, std::string>>{{"no-aa", "0"}, {"no-aa", "1"}, {"taa", "0"},
                                                                       {"taa", "1"}}));
-  std::filesystem::remove_all(dir);
 }
 
 TEST(Schema, UnitsOfDerivedNames) {

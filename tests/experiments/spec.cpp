@@ -1,6 +1,7 @@
 // ExperimentSpec::from_json / load (experiments/experiment_spec.h): malformed experiment files are
 // rejected with a ConfigError that names the file and the key path; every shipped experiment loads;
 // a minimal spec gets the documented defaults.
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -48,21 +49,11 @@ void expect_rejected(const json& j, const std::vector<std::string>& needles) {
   }
 }
 
+// An experiment file with `text`, in its own TempDir.
 struct TempFile {
-  fs::path path;
-  explicit TempFile(const std::string& text) {
-    path = fs::temp_directory_path() / ("glintlab-spec-" + std::to_string(::getpid()) + "-" +
-                                        std::to_string(counter()++) + ".json");
-    std::ofstream(path) << text;
-  }
-  ~TempFile() {
-    std::error_code ec;
-    fs::remove(path, ec);
-  }
-  static int& counter() {
-    static int n = 0;
-    return n;
-  }
+  glintlab::test::TempDir dir{"spec"};
+  fs::path path = dir / "experiment.json";
+  explicit TempFile(const std::string& text) { std::ofstream(path) << text; }
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 // sample per pixel above 2x2 above 4x4 supersampling, all above the truth.
 #include "experiments/runner/runner.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -18,13 +19,6 @@ using namespace glintlab;
 using nlohmann::json;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("glintlab_taa_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 // Glinting sand on a wavy plane seen from the thesis' comparison camera. A
 // narrow field of view keeps the pixel footprint of the 640x360 default at a
@@ -49,8 +43,8 @@ json orbit(double deg_per_frame, int frames, double fov) {
           {"fov", fov}};
 }
 
-json run(const json& experiment, const std::string& tag) {
-  fs::path dir = fresh_dir(tag);
+// Runs `experiment` in `dir` (a TempDir of the calling test, which outlives the files read afterwards).
+json run(const json& experiment, const fs::path& dir) {
   std::ofstream(dir / "e.json") << experiment.dump(2);
   RunOptions opt;
   opt.report = false;  // the report has its own test (report.cpp)
@@ -100,7 +94,8 @@ TEST(Taa, EveryOptionRunsAndAppearsInFramesCsv) {
       variants.push_back({{"name", name}, {"aa", "taa"}, {"taa", {{key, v}}}});
     }
   e["variants"] = variants;
-  json s = run(e, "options");
+  const glintlab::test::TempDir tmp("taa_options");
+  json s = run(e, tmp.path());
   ASSERT_EQ(s["variants"].size(), variants.size());
   for (const auto& v : s["variants"]) {
     EXPECT_EQ(v["metrics"]["nonfinite_pixels"]["max"], 0) << v["name"];
@@ -134,7 +129,8 @@ TEST(Taa, StaticCameraConvergesTowardTheReference) {
   e["variants"] = {{{"name", "no-aa"}},
                    {{"name", "ssaa-4x4"}, {"aa", "ssaa"}, {"ssaa_grid", 4}},
                    {{"name", "taa"}, {"aa", "taa"}, {"taa", {{"clamp", "none"}, {"alpha", 0.05}, {"feedback", "fixed"}}}}};
-  json s = run(e, "static");
+  const glintlab::test::TempDir tmp("taa_static");
+  json s = run(e, tmp.path());
   std::ifstream csv(s["_csv"].get<std::string>());
   std::string line;
   std::getline(csv, line);
@@ -175,7 +171,8 @@ TEST(Taa, FlickerRatioRanksSupersamplingOnGlintingOrbitsAtTwoSpeeds) {
     e["variants"] = {{{"name", "no-aa"}},
                      {{"name", "ssaa-2x2"}, {"aa", "ssaa"}, {"ssaa_grid", 2}},
                      {{"name", "ssaa-4x4"}, {"aa", "ssaa"}, {"ssaa_grid", 4}}};
-    json s = run(e, "orbit" + std::to_string(int(speed * 10)));
+    const glintlab::test::TempDir tmp("taa_orbit");
+    json s = run(e, tmp.path());
     const double f1 = metric(s, "no-aa", "flicker_ratio"), f2 = metric(s, "ssaa-2x2", "flicker_ratio"),
                  f4 = metric(s, "ssaa-4x4", "flicker_ratio");
     std::printf("orbit %.1f deg/frame: flicker ratio no-aa %.3f, 2x2 %.3f, 4x4 %.3f\n", speed, f1, f2, f4);

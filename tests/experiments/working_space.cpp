@@ -9,6 +9,7 @@
 
 #include <OpenImageIO/imageio.h>
 #include <glm/glm.hpp>
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -84,9 +85,8 @@ struct Render {
 
 // Renders `j` with `glintlab render` into a fresh temp dir and reads frame 0 of every variant.
 Render render(const nlohmann::json& j, const std::string& tag) {
-  fs::path dir = fs::temp_directory_path() / ("glintlab_ws_" + tag + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const glintlab::test::TempDir tmp("ws_" + tag);
+  const fs::path dir = tmp.path();
   std::ofstream(dir / "ws.json") << j.dump(2);
   RunOptions opt;
   opt.report = false;  // the report has its own test (report.cpp)

@@ -1,5 +1,6 @@
 // ColorManager against the shipped OCIO config: published constants (BT.709, IEC 61966-2-1 sRGB,
 // SMPTE ST 2084 PQ, ACES AP1) and fp64 references computed here from the primaries.
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 
 #include <array>
@@ -241,8 +242,8 @@ TEST(ColorConfig, ChromaticitiesForExr) {
 
 TEST(ColorConfig, OcioEnvironmentOverride) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("glintlab_color_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const glintlab::test::TempDir tmp("color");
+  const fs::path dir = tmp.path();
   const fs::path copy = dir / "other.ocio";
   fs::copy_file(GLINTLAB_OCIO_CONFIG, copy, fs::copy_options::overwrite_existing);
   {

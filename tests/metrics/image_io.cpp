@@ -1,5 +1,6 @@
 // Image file I/O through OpenImageIO: bit-exact EXR round trips, chromaticities metadata, PNG
 // quantisation, atomic writes.
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <string>
 
 #include <OpenImageIO/imageio.h>
@@ -24,12 +26,12 @@ namespace {
 class ImageIoTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("glintlab_image_io_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
+    tmp_ = std::make_unique<glintlab::test::TempDir>(std::string("image_io_") +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = tmp_->path();
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override { tmp_.reset(); }
+  std::unique_ptr<glintlab::test::TempDir> tmp_;
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
   // Names in dir_ that are not the given files (e.g. left-over temporaries).
   int count_entries() const { return static_cast<int>(std::distance(fs::directory_iterator(dir_), {})); }

@@ -8,6 +8,7 @@
 #include "core/vk/vk_context.h"
 #include "tests/support/vk_test_util.h"
 
+#include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -57,7 +58,8 @@ TEST(ShaderCompiler, DefinesReachTheShaderAndHarnessComputes) {
 }
 
 TEST(ShaderCompiler, ErrorsNameFileAndLine) {
-  fs::path dir = fs::temp_directory_path() / "glintlab_shader_err";
+  const glintlab::test::TempDir tmp("shader_err");
+  const fs::path dir = tmp.path();
   fs::create_directories(dir / "inc");
   std::ofstream(dir / "inc" / "bad.glsl") << "// line 1\nfloat f() {\n  return undefined_symbol;\n}\n";
   std::ofstream(dir / "main.comp") << "#version 450\n#include \"inc/bad.glsl\"\nlayout(local_size_x=1) in;\nvoid main() {}\n";
@@ -75,8 +77,8 @@ TEST(ShaderCompiler, ErrorsNameFileAndLine) {
 }
 
 TEST(ShaderCompiler, CacheIsKeyedOnIncludesAndRebuildsCorruptEntries) {
-  fs::path dir = fs::temp_directory_path() / "glintlab_shader_cache";
-  fs::remove_all(dir);
+  const glintlab::test::TempDir tmp("shader_cache");
+  const fs::path dir = tmp.path();
   fs::create_directories(dir / "src");
   auto write_inc = [&](const char* value) {
     std::ofstream(dir / "src" / "value.glsl") << "const float VALUE = " << value << ";\n";
