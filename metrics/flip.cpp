@@ -512,7 +512,7 @@ Image HdrFlipReference::map(const Image& test_xyz) const {
   const State& st = *state_;
   const Image t_rgb = xyz_to_linear_srgb(test_xyz);
   // Exposures are independent: each worker keeps the maximum of the exposures it did.
-  const int workers = std::max(1, std::min<int>(int(st.scales.size()), int(std::thread::hardware_concurrency())));
+  const int workers = std::max(1, std::min<int>(int(st.scales.size()), int(metric_threads())));
   std::vector<std::vector<float>> partial(workers);
   std::atomic<int> next{0};
   auto work = [&](int id) {

@@ -27,7 +27,9 @@
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
+#include "metrics/flip.h"
 #include "metrics/frame_metrics.h"
+#include "metrics/parallel.h"
 
 #include <algorithm>
 #include <chrono>
@@ -245,9 +247,20 @@ int main(int argc, char** argv) {
       }
       if (i > 0) total.push_back(sum);  // the first has no previous frame for the flicker metrics
     }
-    std::printf("\nmetrics of one %dx%d variant frame (wall ms, %u hardware threads): total %.1f ms\n", w, h,
-                std::thread::hardware_concurrency(), median(total));
+    std::printf("\nmetrics of one %dx%d variant frame (wall ms, %ld of %u hardware threads; "
+                "GLINTLAB_METRIC_THREADS caps them): total %.1f ms\n",
+                w, h, metrics::metric_threads(), std::thread::hardware_concurrency(), median(total));
     for (const auto& [n, v] : cost) std::printf("  %-16s %8.2f ms\n", n.c_str(), median(v));
+    // HDR-FLIP as it was before the reference's per-exposure state was shared by the variants.
+    const Image test_xyz = cm.to_xyz_d65(test, spec.working_space);
+    std::vector<double> alone;
+    for (int i = 0; i < 3; ++i) {
+      auto t0 = std::chrono::steady_clock::now();
+      metrics::hdr_flip_map(test_xyz, ref.xyz, spec.metric_options.flip_ppd);
+      alone.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::printf("  %-16s %8.2f ms  (HDR-FLIP preparing the reference for every variant, as before)\n", "flip, unshared",
+                median(alone));
   }
   return 0;
 }
