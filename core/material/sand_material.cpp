@@ -24,7 +24,8 @@ const Range kSSS{"SSS", 0, 1}, kRs{"R_s", 0, 1}, kT{"T", 0, 1}, kRt{"R_t", 0, 1}
     kSigA{"sigmoid_a", 1e-6, 1e4}, kSigB{"sigmoid_b", 0, 1e7}, kIor{"ior", 1, 3}, kColour{"palette", 0, 1e3},
     kGlintGain{"I_glints", 0, 1e6};
 // "glints" (Zirr & Kaplanyan 2016 sec. 4.5); names as the JSON keys inside "glints"
-const Range kLogDensity{"log_density", 0, 14}, kAlphaG{"alpha_g", 1e-3, 1},
+// log_density from -3 (one microdetail per 1000 uv units: sparser than any mesh) to 14
+const Range kLogDensity{"log_density", -3, 14}, kAlphaG{"alpha_g", 1e-3, 1},
     kRelRough{"relative_roughness", 1e-3, 1}, kSizeVar{"size_variation", 0, 2}, kIntensity{"intensity", 0, 1e6},
     kLightCone{"light_cone", 0, 0.5}, kColorSat{"color_saturation", 0, 1};
 

@@ -67,7 +67,7 @@ struct SandFeatures {
 // The microdetail glints of Zirr & Kaplanyan 2016 (glint models grains, zirr,
 // beckmann), JSON object "glints"; names after the paper's sec. 4.5.
 struct SandGlintParams {
-  // log10 of microdetails per unit uv area, [0, 14]. Default 7: the scene
+  // log10 of microdetails per unit uv area, [-3, 14] (1e-3 .. 1e14). Default 7: the scene
   // meshes span uv [0, 1] once over 10 units (core/scene/mesh.h), so 1e7 per
   // uv area is 1e5 per square unit (3.2 mm apart in a 10 m scene). The
   // default experiment's pixels (640x360, 40 deg, 3.6-4 units away) cover

@@ -188,6 +188,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   ShaderCompiler& sc = default_shader_compiler();
   std::vector<std::string> defines = opt_.program.defines;
   defines.push_back(std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0"));
+  defines.push_back(std::string("COLOR_HALF=") + (opt_.color_format == VK_FORMAT_R16G16B16A16_SFLOAT ? "1" : "0"));
   CompiledShader vs = sc.compile("passes/surface.vert", ShaderStage::Vertex, defines);
   CompiledShader fs = sc.compile(opt_.program.fragment, ShaderStage::Fragment, defines);
   fragment_hash_ = fs.source_hash;

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   glintlab::add_list_command(app, exit_code);
   glintlab::add_check_command(app, exit_code);
   glintlab::add_report_command(app, exit_code);
+  glintlab::add_stress_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -15,9 +15,11 @@ float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 // Unit vector along v, or `fallback` when v is zero, denormal or not finite.
 // Scales by the largest component first so huge vectors do not overflow dot().
+// NaN is tested per component: max() of a NaN and a number may return the
+// number, so the largest component alone would let (NaN, 1, 0) through.
 vec3 safe_normalize(vec3 v, vec3 fallback) {
   float s = max3(abs(v));
-  if (!(s > 1e-30) || isinf(s)) return fallback;
+  if (!(s > 1e-30) || isinf(s) || any(isnan(v))) return fallback;
   vec3 u = v / s;
   return u * inversesqrt(dot(u, u));
 }

@@ -10,6 +10,9 @@ layout(set = 0, binding = 2) uniform sampler2D env_map;
 #include "common/environment.glsl"
 #include "sand/sand.glsl"
 
+#ifndef COLOR_HALF
+#define COLOR_HALF 0  // the surface pass sets it when the colour target is RGBA16F
+#endif
 #include "common/surface_interface.glsl"
 #include "common/motion.glsl"
 
@@ -39,6 +42,13 @@ void main() {
   vec3 L = sand_shade(sand_params, s, l);
   float w = sample_jitter_weight.z;
   out_color = vec4(L * w, w);
+#if COLOR_HALF
+  // An RGBA16F target holds at most 65504: what lies above is written as the
+  // largest half (Vulkan leaves the conversion of larger values to the driver:
+  // lavapipe saturates, others may write inf). NaN stays NaN, so a defect of
+  // the material is still seen.
+  out_color.rgb = mix(min(out_color.rgb, vec3(65504.0)), out_color.rgb, isnan(out_color.rgb));
+#endif
 #if SURFACE_MOTION
   out_motion = surface_motion(v_x, v_prev_x);
 #endif

@@ -174,7 +174,8 @@ void main() {
   // ---- current neighbourhood (HDR-mapped, in box space) and motion
   vec4 centre_px = fetch(color_tex, p);
   vec3 cur = to_space(hdr_forward(max(centre_px.rgb, vec3(0.0))));
-  vec3 lo = cur, hi = cur, m1 = vec3(0.0), m2 = vec3(0.0);
+  vec3 lo = cur, hi = cur;
+  vec3 nb[9];
   vec4 mc = fetch(motion_tex, p);
   vec2 v = mc.xy;
   float best_d = mc.z > 0.0 ? mc.z : 3.4e38, best_len = dot(mc.xy, mc.xy);
@@ -184,8 +185,7 @@ void main() {
       vec3 s = to_space(hdr_forward(max(fetch(color_tex, o).rgb, vec3(0.0))));
       lo = min(lo, s);
       hi = max(hi, s);
-      m1 += s;
-      m2 += s * s;
+      nb[(dy + 1) * 3 + dx + 1] = s;
       vec4 mo = fetch(motion_tex, o);
 #if TAA_VELOCITY == VELOCITY_CLOSEST_DEPTH
       float d = mo.z > 0.0 ? mo.z : 3.4e38;  // the sky is farthest
@@ -195,8 +195,31 @@ void main() {
       if (l > best_len) { best_len = l; v = mo.xy; }
 #endif
     }
-  vec3 mean = m1 / 9.0;
-  vec3 sigma = sqrt(max(m2 / 9.0 - mean * mean, vec3(0.0)));
+  // Mean and standard deviation of the neighbourhood (the variance clamp), in
+  // two passes about the mean, on samples scaled by a power of two that brings
+  // the largest to [1/2, 1] (to [1, 4] beyond 2^126). The one-pass form m2/9 - mean^2 (before the
+  // stress suite) cancels to fp32 rounding noise in flat regions (a box 1e-3 of
+  // the mean wide where it should be 1e-5: taa.variance-flat-regions, 6.2e-4
+  // relative error against the fp64 resolve) and overflows beyond 1.8e19
+  // (sigma NaN, a collapsed box on lavapipe: taa.huge-current, error x261).
+  float big = max(max(max(abs(lo.x), abs(lo.y)), abs(lo.z)), max(max(abs(hi.x), abs(hi.y)), abs(hi.z)));
+  // 2^-e, e in [-126, 126], built from its bits (exp2(-126) may come out
+  // denormal and be flushed to 0): the scale and its inverse are normal fp32
+  int e = 0;
+  if (big > 0.0 && !isinf(big)) frexp(big, e);
+  float scale = uintBitsToFloat(uint(127 - clamp(e, -126, 126)) << 23);
+  // `precise`: the compiler may not factor the scale out of the sums
+  // (a s + b s -> (a + b) s, which NIR does to inexact arithmetic).
+  precise vec3 mean = vec3(0.0);
+  for (int k = 0; k < 9; ++k) mean += nb[k] * scale;
+  mean /= 9.0;
+  precise vec3 var = vec3(0.0);
+  for (int k = 0; k < 9; ++k) {
+    precise vec3 d = nb[k] * scale - mean;
+    var += d * d;
+  }
+  precise vec3 sigma = sqrt(var / 9.0) / scale;
+  mean /= scale;
 
   // ---- reprojection and validity
   vec2 q = vec2(p) + 0.5 - v;

@@ -228,7 +228,7 @@ double L_oren(const vec3& n, const vec3& wi, const vec3& wo, double sigma, uint3
   double sin_alpha = cos_i > cos_o ? sin_o : sin_i;
   double sin_beta = cos_i > cos_o ? sin_i : sin_o;
   double cos_beta = std::max(cos_i, cos_o);
-  double tan_beta = sin_beta / std::max(cos_beta, 1e-6);
+  double tan_beta = sin_beta / std::max(cos_beta, 1e-4);  // OREN_NAYAR_MIN_COS of the GLSL
   if (world) tan_beta = clamp01(tan_beta);
   return A + B * std::max(0.0, cos_dphi) * sin_alpha * tan_beta;
 }

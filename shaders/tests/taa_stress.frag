@@ -1,0 +1,40 @@
+#version 450
+// Surface program of the TAA stress cases (experiments/stress/cases_taa.cpp):
+// shades nothing physical; the colour and the motion that the TAA resolve
+// reads are set per frame through the frame uniforms (uploaded every frame),
+// so a case can feed the resolve a history of huge values, motion vectors
+// pointing off-screen or not finite, and so on:
+//   frame_sun_L.rgb   colour scale C
+//   frame_sun_dir.x   pattern: 0 constant C; 1 C h (h a per-pixel hash in [0, 1)^3);
+//                     2 C where the hash is below frame_sun_dir.y, C / 64 elsewhere (sparse bright pixels);
+//                     3 C (1 + frame_sun_dir.y (h - 1/2)) (a flat region with a small relative spread)
+//   frame_sun_dir.z   hash seed (a new pattern each frame)
+//   env_sh[0]         xy: the motion vector of every pixel (pixels) when z > 0.5, and then the
+//                     distances now and last frame are both w (no disocclusion anywhere);
+//                     z <= 0.5: the true motion of the surface (common/motion.glsl)
+#include "common/frame.glsl"
+#include "common/surface_interface.glsl"
+#include "common/pcg3d.glsl"
+#include "common/motion.glsl"
+
+layout(location = 0) out vec4 out_color;
+#if SURFACE_MOTION
+layout(location = 1) out vec4 out_motion;
+#endif
+
+void main() {
+  uvec2 px = uvec2(gl_FragCoord.xy);
+  vec3 h = pcg3d_unit(pcg3d(uvec3(px, floatBitsToUint(frame_sun_dir.z))));
+  vec3 C = frame_sun_L.rgb;
+  vec3 c = C;
+  if (frame_sun_dir.x > 2.5) c = C * (1.0 + frame_sun_dir.y * (h - 0.5));
+  else if (frame_sun_dir.x > 1.5) c = h.x < frame_sun_dir.y ? C : C * (1.0 / 64.0);
+  else if (frame_sun_dir.x > 0.5) c = C * h;
+  float w = sample_jitter_weight.z;
+  out_color = vec4(c * w, w);
+#if SURFACE_MOTION
+  vec4 m = surface_motion(v_x, v_prev_x);
+  if (env_sh[0].z > 0.5) m = vec4(env_sh[0].xy, env_sh[0].w, env_sh[0].w);
+  out_motion = m;
+#endif
+}
