@@ -20,6 +20,7 @@ std::vector<std::string> TaaPass::defines(const TaaSettings& s) {
   return {"TAA_CLAMP=" + std::to_string(int(s.clamp)),
           "TAA_SPACE=" + std::to_string(int(s.space)),
           "TAA_FILTER=" + std::to_string(int(s.history_filter)),
+          std::string("TAA_DERING=") + (s.dering ? "1" : "0"),
           "TAA_VELOCITY=" + std::to_string(int(s.velocity)),
           "TAA_FEEDBACK=" + std::to_string(int(s.feedback)),
           "TAA_HDR=" + std::to_string(int(s.hdr)),

@@ -4,7 +4,8 @@
 // (RenderPasses/Antialiasing/TAA: Halton(2,3) x16 jitter, alpha 0.1, clamp to
 // mean +- 1.0 sigma over 3x3 in YCgCo, 9-tap Catmull-Rom history, the longest
 // motion vector in 3x3, Karis' alpha' = alpha d / (d + box range) near the
-// box edge, no HDR weighting).
+// box edge, no HDR weighting), with one addition: the Catmull-Rom history is
+// deringed (`dering`, below; Falcor does not).
 #pragma once
 
 #include "core/render/sample_schedule.h"
@@ -69,6 +70,14 @@ struct TaaSettings {
   double gamma = 1.0;  // variance box half-width in sigmas
   TaaSpace space = TaaSpace::YCoCg;
   TaaHistoryFilter history_filter = TaaHistoryFilter::CatmullRom;
+  // Clamp the Catmull-Rom history to the range of the 2x2 texels around the
+  // reprojected point (FSR2's deringing of its Lanczos history). Without it
+  // the filter's negative lobes ring next to a bright HDR glint: the history
+  // falls to 0 (it is floored there), the variance box of a glinting
+  // neighbourhood is too wide to lift it, and dark pixels appear beside glints
+  // (measured on the default experiment; `false` is Falcor exactly). No effect
+  // with the bilinear filter, which cannot overshoot.
+  bool dering = true;
   TaaVelocity velocity = TaaVelocity::Longest;
   TaaFeedback feedback = TaaFeedback::Karis;
   TaaHdr hdr = TaaHdr::None;

@@ -30,6 +30,7 @@ nlohmann::json taa_json(const core::TaaSettings& t) {
           {"gamma", t.gamma},
           {"space", enum_name(core::kTaaSpaceNames, t.space)},
           {"history_filter", enum_name(core::kTaaHistoryFilterNames, t.history_filter)},
+          {"dering", t.dering},
           {"velocity", enum_name(core::kTaaVelocityNames, t.velocity)},
           {"feedback", enum_name(core::kTaaFeedbackNames, t.feedback)},
           {"hdr", enum_name(core::kTaaHdrNames, t.hdr)},

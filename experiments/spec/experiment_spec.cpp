@@ -52,6 +52,7 @@ core::TaaSettings parse_taa(JsonReader& r) {
   t.gamma = r.get_number("gamma", t.gamma, 0.0, 100.0);
   t.space = get_named(r, "space", core::kTaaSpaceNames, t.space);
   t.history_filter = get_named(r, "history_filter", core::kTaaHistoryFilterNames, t.history_filter);
+  t.dering = r.get_bool("dering", t.dering);
   t.velocity = get_named(r, "velocity", core::kTaaVelocityNames, t.velocity);
   t.feedback = get_named(r, "feedback", core::kTaaFeedbackNames, t.feedback);
   t.hdr = get_named(r, "hdr", core::kTaaHdrNames, t.hdr);

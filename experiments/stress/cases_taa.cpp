@@ -9,7 +9,11 @@
 // output) per channel (K = 2.5: the corners of a YCoCg box of colours in
 // [0, M] reach 2.41 M in rgb; 1.25 for rgb boxes and Catmull-Rom's lobes);
 // where a case says so, the history is rectified: out <= 2.5 x the 3x3
-// neighbourhood's largest current value. Two configurations (rgb, bilinear,
+// neighbourhood's largest current value; where a case says so (grey inputs),
+// no output is darker than the darkest input, out >= min(current frame, last
+// output) (the history is a convex combination of last outputs and a
+// rectification box never excludes the current colours' mean, so only
+// filter ringing can break it). Two configurations (rgb, bilinear,
 // centre velocity, fixed feedback, no HDR mapping; clamp none or variance)
 // are compared with an fp64 model of the resolve:
 // out = (1 - alpha) h + alpha current where the history is valid (not the
@@ -22,7 +26,9 @@
 #include "experiments/stress/render_util.h"
 #include "experiments/stress/stress_internal.h"
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace glintlab::stress {
 
@@ -41,6 +47,7 @@ struct Config {
   core::TaaSettings s;
   bool fp64 = false;   // the configuration the fp64 model covers
   bool local = false;  // rectified: out <= 2.5 x the 3x3 current maximum
+  bool floor = false;  // no ringing: out >= min(current frame, last output)
 };
 
 Config simple_config() {
@@ -156,8 +163,8 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
   cam.far = 10;
   ValueScan scan;
   ErrorStat err;
-  double range_ratio = 0, local_ratio = 0;
-  size_t range_violations = 0, local_violations = 0, fp64_compared_frames = 0;
+  double range_ratio = 0, local_ratio = 0, floor_ratio = std::numeric_limits<double>::infinity();
+  size_t range_violations = 0, local_violations = 0, floor_violations = 0, fp64_compared_frames = 0;
   std::string notes;
   for (const Config& cfg : spec.configs) {
     core::FrameGraph g(env.ctx, W, H);
@@ -195,6 +202,12 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
       // range of the inputs: this frame's colour and the history (last output)
       double M = scan_image(cur).max_value;
       if (have_prev) M = std::max(M, scan_image(prev).max_value);
+      double m_in = std::numeric_limits<double>::infinity();  // the darkest input value
+      if (cfg.floor)
+        for (const Image* img : {&cur, have_prev ? &prev : &cur})
+            for (int y = 0; y < H; ++y)
+              for (int x = 0; x < W; ++x)
+                for (int c = 0; c < 3; ++c) m_in = std::min(m_in, double(img->at(x, y, c)));
       const double K = 2.5;
       for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x)
@@ -203,6 +216,10 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
             if (!std::isfinite(v)) continue;
             if (M > 0) range_ratio = std::max(range_ratio, v / M);
             range_violations += !(v <= K * M * (1 + 1e-6));
+            if (cfg.floor && m_in > 0) {
+              floor_ratio = std::min(floor_ratio, v / m_in);
+              floor_violations += !(v >= m_in * (1 - 1e-5));
+            }
             if (cfg.local && have_prev) {
               double m3 = 0;
               for (int dy = -1; dy <= 1; ++dy)
@@ -227,7 +244,7 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
       have_prev = true;
     }
   }
-  bool ok = range_violations == 0 && local_violations == 0;
+  bool ok = range_violations == 0 && local_violations == 0 && floor_violations == 0;
   std::string configs;
   for (const Config& c : spec.configs) configs += (configs.empty() ? "" : ", ") + c.label;
   std::string detail = spec.what + "; configurations " + configs + "; " + std::to_string(spec.frames.size()) +
@@ -236,6 +253,9 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
   if (local_ratio > 0 || local_violations)
     detail += "; rectified configurations: out / max(3x3 current) max " + fmt(local_ratio) + " (bound 2.5, " +
               std::to_string(local_violations) + " above)";
+  if (std::isfinite(floor_ratio) || floor_violations)
+    detail += "; no ringing: out / min(input) min " + fmt(floor_ratio) + " (bound 1 - 1e-5, " +
+              std::to_string(floor_violations) + " below)";
   if (err.compared) detail += "; fp64 model of the resolve (no-clamp, variance-rgb), floor 1e-30: worst " + err.worst;
   detail += notes;
   StressCaseResult res = make_result(spec.name, "taa", scan, err.compared ? &err : nullptr,
@@ -243,6 +263,7 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
   res.extra["range_ratio"] = range_ratio;
   res.extra["range_bound"] = 2.5;
   if (local_ratio > 0) res.extra["local_ratio"] = local_ratio;
+  if (std::isfinite(floor_ratio)) res.extra["floor_ratio"] = floor_ratio;
   return res;
 }
 
@@ -275,8 +296,8 @@ void add_taa_cases(std::vector<Case>& cases) {
   std::vector<TaaCaseSpec> specs;
   specs.push_back({"taa.huge-history.falcor", true, {falcor_config()}, huge_then_normal(1e30f, 4), 32, 18,
                    VK_FORMAT_R32G32B32A32_SFLOAT,
-                   "frame 0 at 1e30 (a history full of huge values), then 4 frames at 1; Falcor's defaults (variance "
-                   "clamp in YCoCg, Catmull-Rom, Karis feedback)"});
+                   "frame 0 at 1e30 (a history full of huge values), then 4 frames at 1; the defaults (Falcor's: variance "
+                   "clamp in YCoCg, Catmull-Rom, Karis feedback; deringed)"});
   specs.push_back({"taa.huge-history.no-clamp", true, {simple_config()}, huge_then_normal(1e30f, 4), 32, 18,
                    VK_FORMAT_R32G32B32A32_SFLOAT,
                    "frame 0 at 1e30, then 4 frames at 1, no rectification: the history decays as 0.9^k 1e30 (within "
@@ -348,6 +369,29 @@ void add_taa_cases(std::vector<Case>& cases) {
                      "a 1x1 image (every tap clamps to the one texel), huge history, motion 0.4 and 1 pixel"});
     specs.push_back({"taa.resolution-4096x16", false, {falcor_config(), simple_config()}, f, 4096, 16,
                      VK_FORMAT_R32G32B32A32_SFLOAT, "a 4096x16 image, huge history, motion 0.4 and 1 pixel"});
+  }
+  {
+    // Sparse glints 64x brighter than the sand around them, a new pattern every
+    // frame, fractional motion: the Catmull-Rom history's negative lobes ring
+    // beside each glint of the last output (to 0, where it is floored), and a
+    // glinting neighbourhood's variance box is too wide to lift it. Deringing
+    // (the default) keeps the history within its 2x2 texels.
+    std::vector<TaaFrame> f;
+    for (int k = 0; k < 6; ++k) f.push_back({glm::vec3(64.0f), 2, 0.04f, true, {0.37f, -0.61f}});
+    Config dflt = falcor_config();
+    dflt.label = "defaults (dering)";
+    dflt.floor = true;
+    Config ycocg_clip = with("clip-ycocg-catmull", true, [](core::TaaSettings& s) { s.clamp = core::TaaClamp::Clip; });
+    ycocg_clip.floor = true;
+    Config bilinear = with("bilinear", true, [](core::TaaSettings& s) {
+      s.history_filter = core::TaaHistoryFilter::Bilinear;
+      s.dering = false;  // no effect on the bilinear filter
+    });
+    bilinear.floor = true;
+    specs.push_back({"taa.sparse-glints-no-ringing", true, {dflt, ycocg_clip, bilinear}, f, 32, 18,
+                     VK_FORMAT_R32G32B32A32_SFLOAT,
+                     "grey sand at 1 with 4 % glints at 64, a new pattern each frame, motion (0.37, -0.61): no output "
+                     "darker than the darkest input"});
   }
   for (auto& s : specs) cases.push_back({s.name, "taa", s.fast, [s](Env& env) { return run_taa_case(env, s); }});
 }

@@ -1,7 +1,7 @@
 #version 450
 // TAA resolve: this frame's jittered colour blended with the reprojected
 // history. Every design choice is a compile-time option (core/render/taa_settings.h
-// names them and cites their sources); the defaults are Falcor's TAA pass.
+// names them and cites their sources); the defaults are Falcor's TAA pass with a deringed history.
 //
 // Per pixel p (texel centre c = p + 0.5):
 //   1. v = motion vector chosen by TAA_VELOCITY; the history is at q = c - v.
@@ -67,6 +67,9 @@ layout(push_constant) uniform Push {
 #ifndef TAA_ANTI_FLICKER
 #define TAA_ANTI_FLICKER 0
 #endif
+#ifndef TAA_DERING
+#define TAA_DERING 1
+#endif
 
 ivec2 g_size;
 
@@ -118,14 +121,28 @@ float space_luma(vec3 y) {
 
 vec4 fetch(sampler2D t, ivec2 p) { return texelFetch(t, clamp(p, ivec2(0), g_size - 1), 0); }
 
-// Bilinear resample at continuous pixel position `pos` (texel centres at +0.5).
-vec3 bilinear(sampler2D t, vec2 pos) {
+// The 2x2 texels around continuous pixel position `pos` (texel centres at
+// +0.5) and pos's fraction between them.
+struct Taps {
+  vec3 a, b, c, d;  // (0, 0), (1, 0), (0, 1), (1, 1)
+  vec2 f;
+};
+Taps taps_2x2(sampler2D t, vec2 pos) {
   vec2 q = pos - 0.5;
-  vec2 f = q - floor(q);
   ivec2 i = ivec2(floor(q));  // q is within [-1, size] here: no out-of-range conversion
-  vec3 a = fetch(t, i).rgb, b = fetch(t, i + ivec2(1, 0)).rgb;
-  vec3 c = fetch(t, i + ivec2(0, 1)).rgb, d = fetch(t, i + ivec2(1, 1)).rgb;
-  return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+  Taps k;
+  k.f = q - floor(q);
+  k.a = fetch(t, i).rgb;
+  k.b = fetch(t, i + ivec2(1, 0)).rgb;
+  k.c = fetch(t, i + ivec2(0, 1)).rgb;
+  k.d = fetch(t, i + ivec2(1, 1)).rgb;
+  return k;
+}
+
+// Bilinear resample at `pos`.
+vec3 bilinear(sampler2D t, vec2 pos) {
+  Taps k = taps_2x2(t, pos);
+  return mix(mix(k.a, k.b, k.f.x), mix(k.c, k.d, k.f.x), k.f.y);
 }
 
 // Catmull-Rom in Falcor's 9-tap form: the 4x4 bicubic taps with the two
@@ -149,6 +166,13 @@ vec3 catmull_rom(sampler2D t, vec2 pos) {
   r += bilinear(t, vec2(p0.x, p3.y)) * w0.x * w3.y;
   r += bilinear(t, vec2(p12.x, p3.y)) * w12.x * w3.y;
   r += bilinear(t, vec2(p3.x, p3.y)) * w3.x * w3.y;
+#if TAA_DERING
+  // Deringing (FSR2): keep the result within the range of the 2x2 texels
+  // around pos, so a bright glint's negative lobes cannot darken its
+  // neighbours (core/render/taa_settings.h, `dering`).
+  Taps k = taps_2x2(t, pos);
+  r = clamp(r, min(min(k.a, k.b), min(k.c, k.d)), max(max(k.a, k.b), max(k.c, k.d)));
+#endif
   return max(r, vec3(0.0));  // the negative lobes can ring below zero
 }
 
