@@ -4,8 +4,8 @@
 // (RenderPasses/Antialiasing/TAA: Halton(2,3) x16 jitter, alpha 0.1, clamp to
 // mean +- 1.0 sigma over 3x3 in YCgCo, 9-tap Catmull-Rom history, the longest
 // motion vector in 3x3, Karis' alpha' = alpha d / (d + box range) near the
-// box edge, no HDR weighting), with one addition: the Catmull-Rom history is
-// deringed (`dering`, below; Falcor does not).
+// box edge, no HDR weighting). One option beyond Falcor, off by default:
+// `dering`, below.
 #pragma once
 
 #include "core/render/sample_schedule.h"
@@ -74,10 +74,11 @@ struct TaaSettings {
   // reprojected point (FSR2's deringing of its Lanczos history). Without it
   // the filter's negative lobes ring next to a bright HDR glint: the history
   // falls to 0 (it is floored there), the variance box of a glinting
-  // neighbourhood is too wide to lift it, and dark pixels appear beside glints
-  // (measured on the default experiment; `false` is Falcor exactly). No effect
-  // with the bilinear filter, which cannot overshoot.
-  bool dering = true;
+  // neighbourhood is too wide to lift it, and black pixels appear beside
+  // glints (seen in the default experiment, whose TAA variants turn it on).
+  // Off by default so that the defaults stay Falcor's exactly. No effect with
+  // the bilinear filter, which cannot overshoot.
+  bool dering = false;
   TaaVelocity velocity = TaaVelocity::Longest;
   TaaFeedback feedback = TaaFeedback::Karis;
   TaaHdr hdr = TaaHdr::None;

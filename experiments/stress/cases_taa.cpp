@@ -296,8 +296,8 @@ void add_taa_cases(std::vector<Case>& cases) {
   std::vector<TaaCaseSpec> specs;
   specs.push_back({"taa.huge-history.falcor", true, {falcor_config()}, huge_then_normal(1e30f, 4), 32, 18,
                    VK_FORMAT_R32G32B32A32_SFLOAT,
-                   "frame 0 at 1e30 (a history full of huge values), then 4 frames at 1; the defaults (Falcor's: variance "
-                   "clamp in YCoCg, Catmull-Rom, Karis feedback; deringed)"});
+                   "frame 0 at 1e30 (a history full of huge values), then 4 frames at 1; Falcor's defaults (variance "
+                   "clamp in YCoCg, Catmull-Rom, Karis feedback)"});
   specs.push_back({"taa.huge-history.no-clamp", true, {simple_config()}, huge_then_normal(1e30f, 4), 32, 18,
                    VK_FORMAT_R32G32B32A32_SFLOAT,
                    "frame 0 at 1e30, then 4 frames at 1, no rectification: the history decays as 0.9^k 1e30 (within "
@@ -375,18 +375,18 @@ void add_taa_cases(std::vector<Case>& cases) {
     // frame, fractional motion: the Catmull-Rom history's negative lobes ring
     // beside each glint of the last output (to 0, where it is floored), and a
     // glinting neighbourhood's variance box is too wide to lift it. Deringing
-    // (the default) keeps the history within its 2x2 texels.
+    // keeps the history within its 2x2 texels.
     std::vector<TaaFrame> f;
     for (int k = 0; k < 6; ++k) f.push_back({glm::vec3(64.0f), 2, 0.04f, true, {0.37f, -0.61f}});
-    Config dflt = falcor_config();
-    dflt.label = "defaults (dering)";
+    Config dflt = with("falcor-dering", true, [](core::TaaSettings& s) { s.dering = true; });
     dflt.floor = true;
-    Config ycocg_clip = with("clip-ycocg-catmull", true, [](core::TaaSettings& s) { s.clamp = core::TaaClamp::Clip; });
-    ycocg_clip.floor = true;
-    Config bilinear = with("bilinear", true, [](core::TaaSettings& s) {
-      s.history_filter = core::TaaHistoryFilter::Bilinear;
-      s.dering = false;  // no effect on the bilinear filter
+    Config ycocg_clip = with("clip-ycocg-catmull-dering", true, [](core::TaaSettings& s) {
+      s.clamp = core::TaaClamp::Clip;
+      s.dering = true;
     });
+    ycocg_clip.floor = true;
+    Config bilinear = with("bilinear", true,
+                           [](core::TaaSettings& s) { s.history_filter = core::TaaHistoryFilter::Bilinear; });
     bilinear.floor = true;
     specs.push_back({"taa.sparse-glints-no-ringing", true, {dflt, ycocg_clip, bilinear}, f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,

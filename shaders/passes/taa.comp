@@ -1,7 +1,7 @@
 #version 450
 // TAA resolve: this frame's jittered colour blended with the reprojected
 // history. Every design choice is a compile-time option (core/render/taa_settings.h
-// names them and cites their sources); the defaults are Falcor's TAA pass with a deringed history.
+// names them and cites their sources); the defaults are Falcor's TAA pass.
 //
 // Per pixel p (texel centre c = p + 0.5):
 //   1. v = motion vector chosen by TAA_VELOCITY; the history is at q = c - v.
@@ -68,7 +68,7 @@ layout(push_constant) uniform Push {
 #define TAA_ANTI_FLICKER 0
 #endif
 #ifndef TAA_DERING
-#define TAA_DERING 1
+#define TAA_DERING 0
 #endif
 
 ivec2 g_size;

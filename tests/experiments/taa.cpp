@@ -84,7 +84,7 @@ TEST(Taa, EveryOptionRunsAndAppearsInFramesCsv) {
       {"feedback", {"fixed", "luma", "karis"}},
       {"hdr", {"none", "inverse_luma", "tonemap"}},
       {"anti_flicker", {true}},
-      {"dering", {false}},
+      {"dering", {true}},
       {"alpha", {0.04}},
       {"gamma", {1.25}}};
   for (const auto& [key, values] : options)
