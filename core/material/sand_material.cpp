@@ -224,6 +224,7 @@ SandParams SandParams::from_json(JsonReader& r) {
       }
     }
     G.color_saturation = getg(kColorSat, G.color_saturation);
+    G.half_vector_blend = g->get_bool("half_vector_blend", G.half_vector_blend);
     g->finish();
   }
   r.finish();
@@ -239,6 +240,7 @@ SandParams SandParams::reference() const {
   const SandParams defaults;
   p.sigmoid_a = defaults.sigmoid_a;
   p.sigmoid_b = defaults.sigmoid_b;
+  p.glints.half_vector_blend = false;  // zirr's estimator option; the grains truth has no half-vector bins
   return p;
 }
 
@@ -276,6 +278,7 @@ SandParamsGPU SandParams::pack() const {
   }
   g.glint_log_density = float(glints.log_density);
   g.glint_color_saturation = float(glints.color_saturation);
+  g.glint_half_vector_blend = glints.half_vector_blend ? 1.0f : 0.0f;
   return g;
 }
 

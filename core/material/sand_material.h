@@ -30,7 +30,7 @@ struct SandParamsGPU {
   float sig_b, glint_intensity, glint_light_cone, glint_size_variation;
   uint32_t appendix_compat, fresnel_half_vector, glint_model, energy_consistent;
   float glint_alpha[4];  // xy = alpha_g (u, v), zw = relative roughness (u, v)
-  float glint_log_density, glint_color_saturation, glint_pad0, glint_pad1;
+  float glint_log_density, glint_color_saturation, glint_half_vector_blend, glint_pad1;
 };
 static_assert(sizeof(SandParamsGPU) == 256, "SandParamsGPU must match the std140 GLSL struct");
 static_assert(offsetof(SandParamsGPU, I_glints) == 128, "std140 offset");
@@ -86,6 +86,12 @@ struct SandGlintParams {
   // sun's angular radius of the frame (frame_sun_dir.w).
   std::optional<double> light_cone;
   double color_saturation = 0.0;  // coloured glints (sec. 4.5): 0 = white, 1 = full colour wheel, [0, 1]
+  // zirr only, a glintlab extension (off: Listing 1 exactly): a cell's
+  // reflectance is the bilinear blend of its counts in the four half-vector
+  // bins nearest to h instead of the count of the one bin h falls in, so a
+  // glint fades as h moves across a bin boundary instead of being redrawn.
+  // The expectation per cell is unchanged (each bin's is P(h) m0).
+  bool half_vector_blend = false;
 };
 
 struct SandParams {

@@ -77,6 +77,7 @@ std::vector<float> run_terms(Env& env, const std::vector<Item>& items) {
     r[33] = f32(c.p.ior);
     r[34] = f32(c.sun_cone);
     r[35] = float(c.model);
+    r[36] = c.p.half_vector_blend ? 1.0f : 0.0f;
   }
   return core::run_compute(env.ctx, "tests/glint_terms.comp", {}, in, items.size() * kTermsOut, uint32_t(items.size()));
 }
@@ -149,6 +150,7 @@ StressCaseResult run_glint_case(Env& env, const GlintCaseSpec& spec) {
   std::vector<Item> items;
   for (size_t i = 0; i < n; ++i) {
     Item c = base_item(r, spec.models[i % spec.models.size()]);
+    c.p.half_vector_blend = (i / spec.models.size()) % 2 == 1;  // zirr: half the items blend half-vector bins
     spec.mod(r, c);
     round_to_f32(c);
     items.push_back(c);
@@ -183,6 +185,7 @@ StressCaseResult run_glint_case(Env& env, const GlintCaseSpec& spec) {
     rg.h_cell = o2(o + 20);
     rg.s_ref = o[22];
     rg.cone = o[23];
+    rg.hv_blend = c.p.half_vector_blend;
     const vec3 h = fg.h;
     const double beck = gr::beckmann_D(h, vec2(0), rg.alpha_g);
     bool any_glint = false;

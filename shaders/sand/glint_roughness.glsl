@@ -18,6 +18,7 @@ struct GlintRoughness {
   vec2 h_cell;     // half-vector quantisation cell, paraboloid units (sec. 4.3)
   float s_ref;     // reference cell size (uv): one microdetail per cell, 10^(-log_density / 2)
   float cone;      // light-cone angular radius used (rad)
+  bool hv_blend;   // zirr: blend the four nearest half-vector bins (glints.half_vector_blend)
 };
 
 // The stretch of sec. 4.4 is clamped to [2^-12, 2^12] (alpha_m = 0 on an axis,
@@ -60,6 +61,7 @@ GlintRoughness glint_roughness(SandParams p, float sun_cone) {
                   GLINT_MAX_STRETCH);
   g.stretch = gm > 1.0 ? vec2(1.0, 1.0 / gm) : vec2(gm, 1.0);
   g.s_ref = exp2(-0.5 * 3.32192809489 * p.glint_log_density);  // 10^(-d/2)
+  g.hv_blend = p.glint_half_vector_blend > 0.5;
   return g;
 }
 

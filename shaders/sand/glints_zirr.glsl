@@ -62,17 +62,39 @@ GlintZirrPixel glint_zirr_pixel(vec3 h, GlintRoughness r) {
 // from rand(C) ("a random albedo from the color wheel in each cell").
 // E[Cr] = pmf m0 = D_g(h) in the slope domain for every cell (eq. 7), so
 // any normalised weighting of cells converges to beckmann.
-vec3 glint_zirr_cell(uvec2 seed, float n_cell, GlintZirrPixel px, GlintRoughness r, float size_variation,
-                     float saturation) {
-  vec3 uc = pcg3d_unit(pcg3d(uvec3(seed, GLINT_ZIRR_OFFSET_SALT)));
-  uvec2 hidx = wrapped_floor(px.hp / r.h_cell + uc.xy);
+// The reflectance of cell `seed` in half-vector bin `hidx` (lines 16-20);
+// `hue` = rand(C).z.
+vec3 glint_zirr_bin(uvec2 seed, uvec2 hidx, float n_cell, GlintZirrPixel px, float size_variation, float saturation,
+                    float hue) {
   uvec3 hh = pcg3d(uvec3(seed, pcg3d(uvec3(hidx, GLINT_ZIRR_HALF_SALT)).x));
   vec3 u = glint_open_unit(hh);
   float Cn = n_cell;
   if (size_variation > 0.0) Cn *= max(abs(1.0 + size_variation * normal_quantile(u.y)), GLINT_MIN_SIZE_FACTOR);
   float rn = binomial_draw(Cn, px.pmf, u.x, u.z);
   if (!(rn > 0.0)) return vec3(0.0);
-  return (rn * px.m0 / Cn) * glint_tint(uc.z, saturation, rn);
+  return (rn * px.m0 / Cn) * glint_tint(hue, saturation, rn);
+}
+
+// r.hv_blend (a glintlab extension, SandParams glints.half_vector_blend):
+// instead of the one bin h falls in, the bilinear blend of the four bins
+// whose centres surround it (bin k's centre at k + 1/2 in units of h_cell),
+// so a glint fades in and out as h moves instead of being redrawn at a bin
+// boundary. Each bin's expectation is P(h) m0, hence the blend's too.
+vec3 glint_zirr_cell(uvec2 seed, float n_cell, GlintZirrPixel px, GlintRoughness r, float size_variation,
+                     float saturation) {
+  vec3 uc = pcg3d_unit(pcg3d(uvec3(seed, GLINT_ZIRR_OFFSET_SALT)));
+  vec2 harg = px.hp / r.h_cell + uc.xy;
+  if (!r.hv_blend) return glint_zirr_bin(seed, wrapped_floor(harg), n_cell, px, size_variation, saturation, uc.z);
+  vec2 q = harg - 0.5;
+  vec2 f = q - floor(q);
+  uvec2 b = wrapped_floor(q);
+  vec3 acc = vec3(0.0);
+  for (uint k = 0u; k < 4u; ++k) {
+    uvec2 d = uvec2(k & 1u, k >> 1u);
+    float w = (d.x == 1u ? f.x : 1.0 - f.x) * (d.y == 1u ? f.y : 1.0 - f.y);
+    if (w > 0.0) acc += w * glint_zirr_bin(seed, b + d, n_cell, px, size_variation, saturation, uc.z);
+  }
+  return acc;
 }
 
 // The estimate of one pixel: Listing 1 lines 7-24.

@@ -50,7 +50,7 @@ struct SandParams {
   vec4 glint_alpha;          // xy: global Beckmann roughness alpha_g (u, v); zw: relative roughness alpha_l / alpha_g (u, v)
   float glint_log_density;       // log10 of microdetails per unit uv area (sec. 4.5)
   float glint_color_saturation;  // coloured glints: 0 = white, 1 = full colour wheel (sec. 4.5)
-  float glint_pad0;
+  float glint_half_vector_blend;  // zirr: 0 = Listing 1's hard half-vector bins; 1 = bilinear over the four nearest bins
   float glint_pad1;
 };
 

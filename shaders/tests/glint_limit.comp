@@ -8,7 +8,8 @@
 // and the beckmann term. Local frame
 // t = x, b = y, n = z. Input record (GLINT_LIMIT_IN floats): 0-1 uv, 2-3
 // duv_dx, 4-5 duv_dy, 6-8 wi, 9-11 wo, 12-15 glint_alpha, 16 log_density,
-// 17 size_variation, 18 light_cone, 19 color_saturation, 20 ior.
+// 17 size_variation, 18 light_cone, 19 color_saturation, 20 ior,
+// 21 half_vector_blend (0/1).
 // Output record (GLINT_LIMIT_OUT floats): 0-2 zirr L, 3-5 grains mean L,
 // 6-8 beckmann L, 9 zirr cells. L_i = 1, intensity 1.
 layout(local_size_x = 64) in;
@@ -39,6 +40,7 @@ void main() {
   p.glint_light_cone = inputs[i + 18u];
   p.glint_color_saturation = inputs[i + 19u];
   p.ior = inputs[i + 20u];
+  p.glint_half_vector_blend = inputs[i + 21u];
   p.glint_intensity = 1.0;
   const vec3 t = vec3(1.0, 0.0, 0.0), b = vec3(0.0, 1.0, 0.0), n = vec3(0.0, 0.0, 1.0), L_i = vec3(1.0);
   GlintTerm z = glint_term(SAND_GLINT_ZIRR, p, uv, dx, dy, t, b, n, wi, wo, L_i, 0.0);

@@ -5,7 +5,7 @@
 //   0-1 uv, 2-3 duv_dx, 4-5 duv_dy, 6-8 t, 9-11 b, 12-14 n, 15-17 wi,
 //   18-20 wo, 21-23 L_i, 24-27 glint_alpha, 28 log_density,
 //   29 size_variation, 30 intensity, 31 light_cone, 32 color_saturation,
-//   33 ior, 34 sun cone, 35 model (SAND_GLINT_*).
+//   33 ior, 34 sun cone, 35 model (SAND_GLINT_*), 36 half_vector_blend (0/1).
 // Output record (GLINT_OUT floats):
 //   0-2 frame wi, 3-5 wo, 6-8 h, 9 valid; 10-23 GlintRoughness (alpha_surface,
 //   alpha_g, alpha_l, alpha_m, stretch, h_cell, s_ref, cone); 24 beckmann D,
@@ -52,7 +52,7 @@ void main() {
   p.SSS = 0.0; p.R_s = 0.0; p.T = 0.0; p.R_t = 0.0; p.sigma_g = 1.0; p.P = 0.0; p.noise_scale = 1.0;
   p.scattering = 0.0; p.absorption = 0.0; p.sigma_on = 0.0; p.sig_a = 1.0; p.sig_b = 0.0;
   p.appendix_compat = 0u; p.fresnel_half_vector = 0u; p.energy_consistent = 0u;
-  p.glint_pad0 = 0.0; p.glint_pad1 = 0.0;
+  p.glint_half_vector_blend = inputs[i + 36u]; p.glint_pad1 = 0.0;
   p.glint_alpha = vec4(in2(i + 24u), in2(i + 26u));
   p.glint_log_density = inputs[i + 28u];
   p.glint_size_variation = inputs[i + 29u];

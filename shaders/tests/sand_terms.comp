@@ -57,7 +57,7 @@ void main() {
   p.sigma_on = inputs[i + 29u];
   p.sig_a = inputs[i + 30u];
   p.sig_b = inputs[i + 31u];
-  p.glint_pad0 = 0.0; p.glint_pad1 = 0.0;
+  p.glint_half_vector_blend = 0.0; p.glint_pad1 = 0.0;
   p.energy_consistent = uint(inputs[i + 64u]);
   p.glint_alpha = vec4(in2(i + 65u), in2(i + 67u));
   p.glint_log_density = inputs[i + 69u];

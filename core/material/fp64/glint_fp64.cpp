@@ -33,6 +33,7 @@ Params from_gpu(const core::SandParamsGPU& g) {
   p.light_cone = g.glint_light_cone;
   p.color_saturation = g.glint_color_saturation;
   p.ior = g.ior;
+  p.half_vector_blend = g.glint_half_vector_blend > 0.5f;
   return p;
 }
 
@@ -205,6 +206,7 @@ Roughness roughness(const Params& p, double sun_cone) {
   else gm = std::min(4096.0, std::max(1.0 / 4096.0, g.alpha_m.x / g.alpha_m.y));
   g.stretch = gm > 1 ? vec2(1, 1 / gm) : vec2(gm, 1);
   g.s_ref = std::pow(10.0, -0.5 * p.log_density);
+  g.hv_blend = p.half_vector_blend;
   return g;
 }
 
@@ -337,15 +339,11 @@ ZirrPixel zirr_pixel(const vec3& h, const Roughness& r) {
   return px;
 }
 
-vec3 zirr_cell(uvec2 seed, double n_cell, const ZirrPixel& px, const Roughness& r, double size_variation,
-               double saturation, Slack* slack, double* cn_rel_err) {
-  vec3 uc = unit01(sand::pcg3d({seed[0], seed[1], kOffsetSalt}));
-  vec2 harg(px.hp.x / r.h_cell.x + uc.x, px.hp.y / r.h_cell.y + uc.y);
-  if (slack) {
-    slack->floor_arg(harg.x);
-    slack->floor_arg(harg.y);
-  }
-  uint32_t hx = wrapped_floor(harg.x), hy = wrapped_floor(harg.y);
+namespace {
+
+// One half-vector bin of a cell: Listing 1 lines 16-20 (glint_zirr_bin).
+vec3 zirr_bin(uvec2 seed, uint32_t hx, uint32_t hy, double n_cell, const ZirrPixel& px, double size_variation,
+              double saturation, double hue, Slack* slack, double* cn_rel_err) {
   sand::uvec3 hh = sand::pcg3d({seed[0], seed[1], sand::pcg3d({hx, hy, kHalfSalt})[0]});
   vec3 u = open01(hh);
   double Cn = n_cell, err = 2e-6;
@@ -358,7 +356,43 @@ vec3 zirr_cell(uvec2 seed, double n_cell, const ZirrPixel& px, const Roughness& 
   if (cn_rel_err) *cn_rel_err = err;
   double rn = binomial_draw(Cn, px.pmf, u.x, u.z, slack, err);
   if (!(rn > 0)) return vec3(0);
-  return (rn * px.m0 / Cn) * glint_tint(uc.z, saturation, rn);
+  return (rn * px.m0 / Cn) * glint_tint(hue, saturation, rn);
+}
+
+}  // namespace
+
+vec3 zirr_cell(uvec2 seed, double n_cell, const ZirrPixel& px, const Roughness& r, double size_variation,
+               double saturation, Slack* slack, double* cn_rel_err) {
+  vec3 uc = unit01(sand::pcg3d({seed[0], seed[1], kOffsetSalt}));
+  vec2 harg(px.hp.x / r.h_cell.x + uc.x, px.hp.y / r.h_cell.y + uc.y);
+  if (!r.hv_blend) {
+    if (slack) {
+      slack->floor_arg(harg.x);
+      slack->floor_arg(harg.y);
+    }
+    return zirr_bin(seed, wrapped_floor(harg.x), wrapped_floor(harg.y), n_cell, px, size_variation, saturation, uc.z,
+                    slack, cn_rel_err);
+  }
+  // glint_zirr_cell's blend of the four bins around harg (bin centres at k + 1/2)
+  vec2 q(harg.x - 0.5, harg.y - 0.5);
+  if (slack) {
+    slack->floor_arg(q.x);
+    slack->floor_arg(q.y);
+  }
+  vec2 f(q.x - std::floor(q.x), q.y - std::floor(q.y));
+  uint32_t bx = wrapped_floor(q.x), by = wrapped_floor(q.y);
+  vec3 acc(0);
+  double err = 0;
+  for (uint32_t k = 0; k < 4; ++k) {
+    uint32_t dx = k & 1u, dy = k >> 1;
+    double w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y);
+    if (!(w > 0)) continue;
+    double e = 0;
+    acc += w * zirr_bin(seed, bx + dx, by + dy, n_cell, px, size_variation, saturation, uc.z, slack, &e);
+    err = std::max(err, e);
+  }
+  if (cn_rel_err) *cn_rel_err = err;
+  return acc;
 }
 
 Zirr zirr(vec2 uv, vec2 dx, vec2 dy, const vec3& h, const Roughness& r, double size_variation, double saturation,

@@ -35,6 +35,7 @@ constexpr int kMaxIterations = 48; // BINOMIAL_MAX_ITERATIONS
 struct Params {
   vec2 alpha_g, relative;
   double log_density, size_variation, intensity, light_cone, color_saturation, ior;
+  bool half_vector_blend = false;  // zirr: the four nearest half-vector bins, bilinear (glints.half_vector_blend)
 };
 Params from_gpu(const core::SandParamsGPU& g);
 
@@ -76,6 +77,7 @@ vec2 beckmann_sample_slope(double u1, double u2, const vec2& alpha);
 struct Roughness {
   vec2 alpha_surface, alpha_g, alpha_l, alpha_m, stretch, h_cell;
   double s_ref, cone;
+  bool hv_blend = false;
 };
 Roughness roughness(const Params& p, double sun_cone);
 
