@@ -16,6 +16,7 @@
 // counted, and must still be finite and non-negative.
 #include "core/material/fp64/glint_fp64.h"
 #include "core/material/fp64/sand_fp64.h"
+#include "core/material/fp64/harness_io.h"
 #include "core/vk/compute_harness.h"
 #include "experiments/stress/stress_internal.h"
 
@@ -29,57 +30,17 @@ namespace gr = glintlab::reference::glint;
 using gr::vec2;
 using gr::vec3;
 
-constexpr size_t kTermsIn = 40, kTermsOut = 72;  // shaders/tests/glint_terms.comp
+using Item = reference::harness::GlintTermsInput;
+using reference::harness::kGlintTermsOut;
+using reference::harness::round_to_f32;
 // NDF values below this (1/sr) are compared against it: D exp(-q) / (pi a_u a_v h.z^4) underflows in
 // fp32 where the exponential alone falls below 1.2e-38 although D would not (a narrow lobe's large
 // prefactor); such a D times any sun (1e6) and gain (1e6) stays below 1e-8.
 constexpr double kDFloor = 1e-20;
 constexpr size_t kMathIn = 12, kMathOut = 12;    // shaders/tests/glint_math.comp
 
-struct Item {
-  vec2 uv{0.5}, dx{0}, dy{0};
-  vec3 t{1, 0, 0}, b{0, 1, 0}, n{0, 0, 1}, wi{0, 0, 1}, wo{0, 0, 1}, L_i{1};
-  gr::Params p{vec2(0.3), vec2(0.1), 7, 0, 1, -1, 0, 1.5};
-  double sun_cone = 0.0046;
-  uint32_t model = gr::kGlintZirr;
-};
-
-// The fp32 values the GPU sees.
-void round_to_f32(Item& c) {
-  auto r2 = [](vec2& v) { v = vec2(f32(v.x), f32(v.y)); };
-  auto r3 = [](vec3& v) { v = vec3(f32(v.x), f32(v.y), f32(v.z)); };
-  r2(c.uv), r2(c.dx), r2(c.dy), r3(c.t), r3(c.b), r3(c.n), r3(c.wi), r3(c.wo), r3(c.L_i);
-  r2(c.p.alpha_g), r2(c.p.relative);
-  c.p.log_density = f32(c.p.log_density);
-  c.p.size_variation = f32(c.p.size_variation);
-  c.p.intensity = f32(c.p.intensity);
-  c.p.light_cone = f32(c.p.light_cone);
-  c.p.color_saturation = f32(c.p.color_saturation);
-  c.p.ior = f32(c.p.ior);
-  c.sun_cone = f32(c.sun_cone);
-}
-
 std::vector<float> run_terms(Env& env, const std::vector<Item>& items) {
-  std::vector<float> in(items.size() * kTermsIn, 0.0f);
-  for (size_t i = 0; i < items.size(); ++i) {
-    const Item& c = items[i];
-    float* r = &in[i * kTermsIn];
-    auto p2 = [&](size_t o, vec2 v) { r[o] = f32(v.x), r[o + 1] = f32(v.y); };
-    auto p3 = [&](size_t o, vec3 v) { r[o] = f32(v.x), r[o + 1] = f32(v.y), r[o + 2] = f32(v.z); };
-    p2(0, c.uv), p2(2, c.dx), p2(4, c.dy);
-    p3(6, c.t), p3(9, c.b), p3(12, c.n), p3(15, c.wi), p3(18, c.wo), p3(21, c.L_i);
-    p2(24, c.p.alpha_g), p2(26, c.p.relative);
-    r[28] = f32(c.p.log_density);
-    r[29] = f32(c.p.size_variation);
-    r[30] = f32(c.p.intensity);
-    r[31] = f32(c.p.light_cone);
-    r[32] = f32(c.p.color_saturation);
-    r[33] = f32(c.p.ior);
-    r[34] = f32(c.sun_cone);
-    r[35] = float(c.model);
-    r[36] = c.p.half_vector_blend ? 1.0f : 0.0f;
-  }
-  return core::run_compute(env.ctx, "tests/glint_terms.comp", {}, in, items.size() * kTermsOut, uint32_t(items.size()));
+  return reference::harness::run_glint_terms(env.ctx, items);
 }
 
 vec2 o2(const float* o) { return vec2(o[0], o[1]); }
@@ -162,7 +123,7 @@ StressCaseResult run_glint_case(Env& env, const GlintCaseSpec& spec) {
   double energy_ratio_max = 0;
   for (size_t i = 0; i < n; ++i) {
     const Item& c = items[i];
-    const float* o = &out[i * kTermsOut];
+    const float* o = &out[i * kGlintTermsOut];
     // m0 = D_l(0) = 1 / (pi alpha_l,u alpha_l,v) is +inf for a perfectly smooth microdetail (alpha_g = 0
     // and no light cone, below the validated range): a delta lobe, never multiplied (its pmf is 0)
     const bool delta_lobe = o[14] == 0 || o[15] == 0;
@@ -176,16 +137,7 @@ StressCaseResult run_glint_case(Env& env, const GlintCaseSpec& spec) {
     }
     const std::string where = "item " + std::to_string(i);
     gr::Frame fg{o3(o), o3(o + 3), o3(o + 6), o[9] != 0};
-    gr::Roughness rg;
-    rg.alpha_surface = o2(o + 10);
-    rg.alpha_g = o2(o + 12);
-    rg.alpha_l = o2(o + 14);
-    rg.alpha_m = o2(o + 16);
-    rg.stretch = o2(o + 18);
-    rg.h_cell = o2(o + 20);
-    rg.s_ref = o[22];
-    rg.cone = o[23];
-    rg.hv_blend = c.p.half_vector_blend;
+    const gr::Roughness rg = reference::harness::gpu_roughness(o, c);  // the GPU's, for the later stages
     const vec3 h = fg.h;
     const double beck = gr::beckmann_D(h, vec2(0), rg.alpha_g);
     bool any_glint = false;
@@ -313,11 +265,11 @@ StressCaseResult energy_case(Env& env, bool fast) {
     for (size_t i = 0; i < per; ++i) {
       size_t base = (d * per + i) * 2;
       for (int m = 0; m < 2; ++m) {
-        const float* o = &out[(base + m) * kTermsOut];
+        const float* o = &out[(base + m) * kGlintTermsOut];
         for (int k = 0; k < 3; ++k) scan.add(o[63 + k]);
       }
-      sz += out[base * kTermsOut + 63 + 1];
-      sb += out[(base + 1) * kTermsOut + 63 + 1];
+      sz += out[base * kGlintTermsOut + 63 + 1];
+      sb += out[(base + 1) * kGlintTermsOut + 63 + 1];
     }
     double ratio = sb > 0 ? sz / sb : kInf;
     worst = std::max(worst, ratio);

@@ -14,6 +14,7 @@
 // within 1e-5 of 1/2. Grain random numbers (exact multiples of 2^-24) must
 // agree exactly. Every output term must be finite and every non-negative term
 // >= 0 on every item (compared or not).
+#include "core/material/fp64/harness_io.h"
 #include "core/material/fp64/glint_fp64.h"
 #include "core/material/fp64/sand_fp64.h"
 #include "core/material/sand_material.h"
@@ -29,53 +30,11 @@ namespace {
 namespace ref = glintlab::reference::sand;
 using ref::vec3;
 
-constexpr size_t kIn = 96, kOut = 72;  // strides of shaders/tests/sand_terms.comp
+using Item = reference::harness::SandTermsInput;
+constexpr size_t kIn = reference::harness::kSandTermsIn, kOut = reference::harness::kSandTermsOut;
 
-struct Item {
-  std::array<float, 3> x_obj, n, wo, wi, L_i, L_sky;
-  float dist;
-  core::SandParamsGPU p;
-  std::array<float, 3> t{1, 0, 0}, b{0, 1, 0};
-  std::array<float, 2> uv{0, 0}, duv_dx{0, 0}, duv_dy{0, 0};
-  float cone = 0;
-};
-
-std::array<float, 3> f3(const vec3& v) { return {f32(v.x), f32(v.y), f32(v.z)}; }
-vec3 d3(const std::array<float, 3>& v) { return vec3(v[0], v[1], v[2]); }
-
-void write_item(const Item& c, float* in) {
-  auto put3 = [&](size_t o, const std::array<float, 3>& v) {
-    for (int i = 0; i < 3; ++i) in[o + i] = v[i];
-  };
-  put3(0, c.x_obj);
-  put3(3, c.n);
-  put3(6, c.wo);
-  in[9] = c.dist;
-  put3(10, c.wi);
-  put3(13, c.L_i);
-  put3(16, c.L_sky);
-  const auto& p = c.p;
-  const float sc[13] = {p.SSS, p.R_s, p.T, p.R_t, p.sigma_g, p.P, p.noise_scale, p.ior, p.scattering, p.absorption,
-                        p.sigma_on, p.sig_a, p.sig_b};
-  for (int i = 0; i < 13; ++i) in[19 + i] = sc[i];
-  in[32] = float(p.appendix_compat);
-  in[33] = float(p.fresnel_half_vector);
-  in[34] = float(p.glint_model);
-  for (int i = 0; i < 3; ++i) in[35 + i] = p.I_glints[i];
-  for (int k = 0; k < 8; ++k)
-    for (int i = 0; i < 3; ++i) in[40 + 3 * k + i] = p.palette[k][i];
-  in[64] = float(p.energy_consistent);
-  for (int i = 0; i < 4; ++i) in[65 + i] = p.glint_alpha[i];
-  in[69] = p.glint_log_density;
-  in[70] = p.glint_size_variation;
-  in[71] = p.glint_intensity;
-  in[72] = p.glint_light_cone;
-  in[73] = p.glint_color_saturation;
-  put3(74, c.t);
-  put3(77, c.b);
-  for (int i = 0; i < 2; ++i) in[80 + i] = c.uv[i], in[82 + i] = c.duv_dx[i], in[84 + i] = c.duv_dy[i];
-  in[86] = c.cone;
-}
+using reference::harness::d3;
+using reference::harness::f3;
 
 // What a case changes: the parameters before packing, then the geometry and light.
 struct Draw {
@@ -192,7 +151,7 @@ StressCaseResult run_sand_case(Env& env, const SandCaseSpec& spec) {
   items.reserve(n_items);
   for (size_t i = 0; i < n_items; ++i) items.push_back(make_item(rng, spec.models[i % spec.models.size()], spec.mod));
   std::vector<float> in(n_items * kIn, 0.0f);
-  for (size_t i = 0; i < n_items; ++i) write_item(items[i], &in[i * kIn]);
+  for (size_t i = 0; i < n_items; ++i) reference::harness::write_sand_terms_input(items[i], &in[i * kIn]);
   std::vector<float> out =
       core::run_compute(env.ctx, "tests/sand_terms.comp", {}, in, n_items * kOut, uint32_t(n_items));
 

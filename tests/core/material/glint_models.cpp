@@ -9,6 +9,7 @@
 #include "core/util/json_check.h"
 #include "core/vk/compute_harness.h"
 #include "core/material/fp64/glint_fp64.h"
+#include "core/material/fp64/harness_io.h"
 #include "tests/support/vk_test_util.h"
 
 #include <glm/geometric.hpp>
@@ -67,23 +68,10 @@ void expect_checks(std::map<std::string, TermCheck>& checks, size_t min_compared
   }
 }
 
-// run_compute in dispatches of at most 2^21 items (maxComputeWorkGroupCount = 65535 groups of 64)
-std::vector<float> run_chunked(core::VkContext& ctx, const std::string& shader, const std::vector<std::string>& defines,
-                               const std::vector<float>& in, size_t in_stride, size_t out_stride, size_t items) {
-  const size_t chunk = size_t(1) << 21;
-  std::vector<float> out(items * out_stride);
-  for (size_t b = 0; b < items; b += chunk) {
-    size_t n = std::min(chunk, items - b);
-    std::vector<float> part(in.begin() + b * in_stride, in.begin() + (b + n) * in_stride);
-    auto o = core::run_compute(ctx, shader, defines, part, n * out_stride, uint32_t(n));
-    std::copy(o.begin(), o.end(), out.begin() + b * out_stride);
-  }
-  return out;
-}
+using reference::harness::f32;
+using reference::harness::run_chunked;
 
 uint32_t uint_from_halves(float hi, float lo) { return (uint32_t(hi) << 16) | uint32_t(lo); }
-
-float f32(double x) { return static_cast<float>(x); }
 
 }  // namespace
 
@@ -509,19 +497,9 @@ TEST(GlintGpu, BinomialSamplerMatchesTheBinomialDistribution) {
 
 namespace {
 
-constexpr size_t kTermsIn = 40, kTermsOut = 72;  // strides of shaders/tests/glint_terms.comp
+using TermsCase = reference::harness::GlintTermsInput;
+using reference::harness::kGlintTermsOut;
 
-struct TermsCase {
-  vec2 uv, dx, dy;
-  vec3 t, b, n, wi, wo, L_i;
-  gr::Params p;
-  double sun_cone;
-  uint32_t model;
-};
-
-// Random and extreme shading points: grazing, back-facing, w_i = +-w_o, w_o = n;
-// zero, degenerate (one derivative 0, parallel), huge, infinite and NaN
-// footprints; huge uv; every parameter over its range and at its ends.
 std::vector<TermsCase> make_terms_cases(size_t n_random, uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> U;
@@ -583,44 +561,10 @@ std::vector<TermsCase> make_terms_cases(size_t n_random, uint64_t seed) {
     c.L_i = vec3(U(rng), U(rng), U(rng)) * 10.0;
     c.model = 2 + uint32_t(rng() % 3);
     c.p.half_vector_blend = i % 4 == 3;  // zirr's blend of half-vector bins in a quarter of the cases
-    // the fp32 values the GPU sees
-    auto r2 = [](vec2& v) { v = vec2(f32(v.x), f32(v.y)); };
-    auto r3 = [](vec3& v) { v = vec3(f32(v.x), f32(v.y), f32(v.z)); };
-    r2(c.uv); r2(c.dx); r2(c.dy); r3(c.t); r3(c.b); r3(c.n); r3(c.wi); r3(c.wo); r3(c.L_i);
-    r2(c.p.alpha_g); r2(c.p.relative);
-    c.p.log_density = f32(c.p.log_density);
-    c.p.size_variation = f32(c.p.size_variation);
-    c.p.intensity = f32(c.p.intensity);
-    c.p.light_cone = f32(c.p.light_cone);
-    c.p.color_saturation = f32(c.p.color_saturation);
-    c.p.ior = f32(c.p.ior);
-    c.sun_cone = f32(c.sun_cone);
+    reference::harness::round_to_f32(c);  // the fp32 values the GPU sees
     cases.push_back(c);
   }
   return cases;
-}
-
-std::vector<float> run_terms(core::VkContext& ctx, const std::vector<TermsCase>& cases) {
-  std::vector<float> in(cases.size() * kTermsIn, 0.0f);
-  for (size_t i = 0; i < cases.size(); ++i) {
-    const TermsCase& c = cases[i];
-    float* r = &in[i * kTermsIn];
-    auto p2 = [&](size_t o, vec2 v) { r[o] = f32(v.x), r[o + 1] = f32(v.y); };
-    auto p3 = [&](size_t o, vec3 v) { r[o] = f32(v.x), r[o + 1] = f32(v.y), r[o + 2] = f32(v.z); };
-    p2(0, c.uv); p2(2, c.dx); p2(4, c.dy);
-    p3(6, c.t); p3(9, c.b); p3(12, c.n); p3(15, c.wi); p3(18, c.wo); p3(21, c.L_i);
-    p2(24, c.p.alpha_g); p2(26, c.p.relative);
-    r[28] = f32(c.p.log_density);
-    r[29] = f32(c.p.size_variation);
-    r[30] = f32(c.p.intensity);
-    r[31] = f32(c.p.light_cone);
-    r[32] = f32(c.p.color_saturation);
-    r[33] = f32(c.p.ior);
-    r[34] = f32(c.sun_cone);
-    r[35] = float(c.model);
-    r[36] = c.p.half_vector_blend ? 1.0f : 0.0f;
-  }
-  return run_chunked(ctx, "tests/glint_terms.comp", {}, in, kTermsIn, kTermsOut, cases.size());
 }
 
 vec2 o2(const float* o) { return vec2(o[0], o[1]); }
@@ -662,13 +606,13 @@ TEST(GlintGpu, ModelTermsMatchFp64OnRandomAndExtremeInputs) {
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   auto cases = make_terms_cases(4000, 1602);
-  auto out = run_terms(ctx, cases);
+  auto out = reference::harness::run_glint_terms(ctx, cases);
   std::map<std::string, TermCheck> checks;
   size_t nonfinite = 0, negative = 0, zirr_compared = 0, zirr_skipped = 0, grains_skipped = 0, walk_mismatch = 0,
          level_mismatch = 0, cells_mismatch = 0;
   for (size_t i = 0; i < cases.size(); ++i) {
     const TermsCase& c = cases[i];
-    const float* o = &out[i * kTermsOut];
+    const float* o = &out[i * kGlintTermsOut];
     for (size_t k = 0; k < 70; ++k) {
       if (!std::isfinite(o[k])) ++nonfinite;
       bool signed_out = k < 9 || (k >= 32 && k <= 33) || k == 35 || (k >= 40 && k <= 55);
@@ -700,16 +644,7 @@ TEST(GlintGpu, ModelTermsMatchFp64OnRandomAndExtremeInputs) {
         chk(rn[k], o[10 + 2 * k + a], (*rv[k])[a], 2e-6 + (k == 3 || k == 4 ? cancel : 0.0), 1e-30);
     chk("s_ref", o[22], r.s_ref, 4e-6, 0);
     chk("cone", o[23], r.cone, 1e-7, 0);
-    gr::Roughness rg;  // the GPU's, for the later stages
-    rg.alpha_surface = o2(o + 10);
-    rg.alpha_g = o2(o + 12);
-    rg.alpha_l = o2(o + 14);
-    rg.alpha_m = o2(o + 16);
-    rg.stretch = o2(o + 18);
-    rg.h_cell = o2(o + 20);
-    rg.s_ref = o[22];
-    rg.cone = o[23];
-    rg.hv_blend = c.p.half_vector_blend;
+    const gr::Roughness rg = reference::harness::gpu_roughness(o, c);  // the GPU's, for the later stages
     // beckmann terms on the GPU's h
     const vec3 h = fg.h;
     double q_g = h.z > 0 ? (std::pow(h.x / h.z / rg.alpha_g.x, 2) + std::pow(h.y / h.z / rg.alpha_g.y, 2)) : 0;
@@ -1312,9 +1247,9 @@ std::vector<double> zirr_image(core::VkContext& ctx, const std::vector<vec2>& uv
     c.model = gr::kGlintZirr;
     cases.push_back(c);
   }
-  auto out = run_terms(ctx, cases);
+  auto out = reference::harness::run_glint_terms(ctx, cases);
   std::vector<double> img(uv.size());
-  for (size_t i = 0; i < uv.size(); ++i) img[i] = (out[i * kTermsOut + 63] + out[i * kTermsOut + 64] + out[i * kTermsOut + 65]) / 3;
+  for (size_t i = 0; i < uv.size(); ++i) img[i] = (out[i * kGlintTermsOut + 63] + out[i * kGlintTermsOut + 64] + out[i * kGlintTermsOut + 65]) / 3;
   return img;
 }
 

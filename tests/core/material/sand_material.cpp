@@ -5,6 +5,7 @@
 #include "core/vk/compute_harness.h"
 #include "core/util/json_check.h"
 #include "core/material/sand_material.h"
+#include "core/material/fp64/harness_io.h"
 #include "core/material/fp64/glint_fp64.h"
 #include "core/material/fp64/sand_fp64.h"
 #include "tests/support/vk_test_util.h"
@@ -334,53 +335,11 @@ TEST(SandReference, FiniteAndNonNegativeOnExtremeInputs) {
 
 namespace {
 
-constexpr size_t kIn = 96, kOut = 72;  // strides of shaders/tests/sand_terms.comp
+using Case = reference::harness::SandTermsInput;
+constexpr size_t kIn = reference::harness::kSandTermsIn, kOut = reference::harness::kSandTermsOut;
 
-struct Case {
-  std::array<float, 3> x_obj, n, wo, wi, L_i, L_sky;
-  float dist;
-  core::SandParamsGPU p;
-  std::array<float, 3> t{1, 0, 0}, b{0, 1, 0};  // tangent frame (glint models)
-  std::array<float, 2> uv{0, 0}, duv_dx{0, 0}, duv_dy{0, 0};
-  float cone = 0;  // the sun's angular radius
-};
-
-std::array<float, 3> f3(const vec3& v) { return {float(v.x), float(v.y), float(v.z)}; }
-vec3 d3(const std::array<float, 3>& v) { return vec3(v[0], v[1], v[2]); }
-
-void write_case(const Case& c, float* in) {
-  auto put3 = [&](size_t o, const std::array<float, 3>& v) {
-    for (int i = 0; i < 3; ++i) in[o + i] = v[i];
-  };
-  put3(0, c.x_obj);
-  put3(3, c.n);
-  put3(6, c.wo);
-  in[9] = c.dist;
-  put3(10, c.wi);
-  put3(13, c.L_i);
-  put3(16, c.L_sky);
-  const auto& p = c.p;
-  const float sc[13] = {p.SSS, p.R_s, p.T, p.R_t, p.sigma_g, p.P, p.noise_scale, p.ior, p.scattering, p.absorption,
-                        p.sigma_on, p.sig_a, p.sig_b};
-  for (int i = 0; i < 13; ++i) in[19 + i] = sc[i];
-  in[32] = float(p.appendix_compat);
-  in[33] = float(p.fresnel_half_vector);
-  in[34] = float(p.glint_model);
-  for (int i = 0; i < 3; ++i) in[35 + i] = p.I_glints[i];
-  for (int k = 0; k < 8; ++k)
-    for (int i = 0; i < 3; ++i) in[40 + 3 * k + i] = p.palette[k][i];
-  in[64] = float(p.energy_consistent);
-  for (int i = 0; i < 4; ++i) in[65 + i] = p.glint_alpha[i];
-  in[69] = p.glint_log_density;
-  in[70] = p.glint_size_variation;
-  in[71] = p.glint_intensity;
-  in[72] = p.glint_light_cone;
-  in[73] = p.glint_color_saturation;
-  put3(74, c.t);
-  put3(77, c.b);
-  for (int i = 0; i < 2; ++i) in[80 + i] = c.uv[i], in[82 + i] = c.duv_dx[i], in[84 + i] = c.duv_dy[i];
-  in[86] = c.cone;
-}
+using reference::harness::d3;
+using reference::harness::f3;
 
 std::vector<Case> make_cases(size_t n_random, uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -480,7 +439,7 @@ ref::Terms ref_terms(const Case& c, const ref::Features& ft = {}) {
 
 std::vector<float> run(core::VkContext& ctx, const std::vector<Case>& cases, const std::vector<std::string>& defines) {
   std::vector<float> in(cases.size() * kIn, 0.0f);
-  for (size_t i = 0; i < cases.size(); ++i) write_case(cases[i], &in[i * kIn]);
+  for (size_t i = 0; i < cases.size(); ++i) reference::harness::write_sand_terms_input(cases[i], &in[i * kIn]);
   return core::run_compute(ctx, "tests/sand_terms.comp", defines, in, cases.size() * kOut, uint32_t(cases.size()));
 }
 
