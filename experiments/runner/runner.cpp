@@ -295,7 +295,8 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
   ImageWriter images(out_dir, plan, cm);
   std::string device;
   try {  // the shards ran on one kind of device; their summaries name it
-    std::ifstream in(fs::path(dirs[0]) / "summary.json");
+    const fs::path first_summary = fs::path(dirs.front()) / "summary.json";
+    std::ifstream in(first_summary);
     device = nlohmann::json::parse(in).value("device", "");
   } catch (const std::exception&) {
   }

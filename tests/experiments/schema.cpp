@@ -53,8 +53,11 @@ TEST(Schema, HeaderAndRowsComeFromOneDefinition) {
                                              "negative_pixels", "deltaE2000", "flicker_ratio", "flicker_valid_px",
                                              "reference_cached"};
   EXPECT_EQ(names, expected);
-  for (const Column& c : schema.columns())  // every number names its unit
-    if (c.name != "variant" && c.name != "reference_cached") EXPECT_FALSE(c.unit.empty()) << c.name;
+  for (const Column& c : schema.columns()) {  // every number names its unit
+    if (c.name != "variant" && c.name != "reference_cached") {
+      EXPECT_FALSE(c.unit.empty()) << c.name;
+    }
+  }
 
   const auto row = schema.row(record(0, 0));
   ASSERT_EQ(row.size(), expected.size());
