@@ -38,7 +38,7 @@ UseState required_state(TargetUse use, bool writes) {
               VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT};
     case TargetUse::Storage:
       return {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-              VK_ACCESS_SHADER_READ_BIT | (writes ? VK_ACCESS_SHADER_WRITE_BIT : VkAccessFlags(0))};
+              VkAccessFlags(VK_ACCESS_SHADER_READ_BIT) | (writes ? VkAccessFlags(VK_ACCESS_SHADER_WRITE_BIT) : VkAccessFlags(0))};
   }
   return {};
 }

@@ -43,8 +43,11 @@ TEST(Check, SameSummaryPassesAndDoubledFlickerFails) {
   worse["variants"][0]["metrics"]["flicker_ratio"]["mean"] = 4.0;  // 2x the flicker
   auto rows = check_summary(worse, base, default_check_tolerances());
   ASSERT_EQ(regressions(rows), 1u);
-  for (const auto& r : rows)
-    if (r.regression) EXPECT_EQ(r.variant + "/" + r.metric, "no-aa/flicker_ratio");
+  for (const auto& r : rows) {
+    if (r.regression) {
+      EXPECT_EQ(r.variant + "/" + r.metric, "no-aa/flicker_ratio");
+    }
+  }
 
   // Over-smoothing moves the ratio away from 1 as well: 0.8 -> 0.4 is worse.
   json smoother = base;
