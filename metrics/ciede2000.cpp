@@ -13,14 +13,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-// CIE 15:2004 eq. 8.3: f(t) = t^(1/3) above (6/29)^3, linear below (also for negative t: no cbrt of
-// negatives needed, the linear branch is used).
-double lab_f(double t) {
-  constexpr double d = 6.0 / 29.0;
-  if (t > d * d * d) return std::cbrt(t);
-  return t / (3.0 * d * d) + 4.0 / 29.0;
-}
-
 // Hue angle in degrees in [0, 360); 0 when a' = b = 0 (Sharma et al. 2005, step 1).
 double hue_deg(double b, double a_prime) {
   if (b == 0.0 && a_prime == 0.0) return 0.0;
@@ -29,6 +21,12 @@ double hue_deg(double b, double a_prime) {
   return h;
 }
 }  // namespace
+
+double lab_f(double t) {
+  constexpr double d = 6.0 / 29.0;
+  if (t > d * d * d) return std::cbrt(t);
+  return t / (3.0 * d * d) + 4.0 / 29.0;
+}
 
 Lab xyz_to_lab(double X, double Y, double Z) {
   const double fx = lab_f(X / kLabWhiteX), fy = lab_f(Y / kLabWhiteY), fz = lab_f(Z / kLabWhiteZ);

@@ -19,6 +19,11 @@ constexpr double kLabWhiteX = 0.95047;
 constexpr double kLabWhiteY = 1.0;
 constexpr double kLabWhiteZ = 1.08883;
 
+// CIE 15:2004 eq. 8.3, the L*a*b* companding of a white-relative tristimulus
+// value: t^(1/3) above (6/29)^3, linear below (also for negative t: no cube
+// root of a negative is taken).
+double lab_f(double t);
+
 // CIE 1976 L*a*b* of XYZ (Y = 1 white) relative to the D65 white above (CIE 15:2004 eq. 8.1-8.3).
 Lab xyz_to_lab(double X, double Y, double Z);
 

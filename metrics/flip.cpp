@@ -1,4 +1,5 @@
 #include "metrics/flip.h"
+#include "metrics/ciede2000.h"
 #include "metrics/parallel.h"
 
 #include <algorithm>
@@ -82,11 +83,6 @@ const Rec709& rec709() {
     return r;
   }();
   return c;
-}
-
-double lab_f(double t) {  // CIE L*a*b* companding
-  constexpr double d = 6.0 / 29.0;
-  return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
 }
 
 // Linear RGB in [0,1] -> Hunt-adjusted L*a*b* (FLIP 2020, perceptually uniform colour space:
