@@ -194,15 +194,10 @@ StressCaseResult run_glint_case(Env& env, const GlintCaseSpec& spec) {
       }
     }
     if (spec.checks.radiance) {
-      vec3 D = c.model == gr::kGlintBeckmann ? vec3(o[24]) : (c.model == gr::kGlintGrains ? o3(o + 60) : o3(o + 56));
-      vec3 L = gr::glint_radiance(D, fg, rg, c.p.ior, c.L_i, c.p.intensity);
-      double Ls = std::max({L.x, L.y, L.z});
-      double Gc = fg.valid ? 0.25 * gr::smith_G2_over_cos_o(fg.wi, fg.wo, h, rg.alpha_surface) : 0.0;
-      double Dmax = std::max({std::fabs(D.x), std::fabs(D.y), std::fabs(D.z)});
-      double Lmax = std::max({c.L_i.x, c.L_i.y, c.L_i.z});
-      // Schlick's F carries 1e-6 absolute: its share of the floor
-      double floor = std::max({1e-3 * Ls, 1.5e-6 * Gc * Dmax * Lmax * c.p.intensity / (spec.bound / 2), 1e-30});
-      for (int k = 0; k < 3; ++k) err.add(o[63 + k], L[k], floor, where + " radiance");
+      const reference::harness::GlintRadiance R = reference::harness::glint_radiance_of(o, c, fg, rg);
+      // Schlick's F error: its share of the floor
+      double floor = std::max({1e-3 * R.L_max, R.fresnel_allowance / (spec.bound / 2), 1e-30});
+      for (int k = 0; k < 3; ++k) err.add(o[63 + k], R.L[k], floor, where + " radiance");
     }
   }
   bool ok = cells_mismatch == 0 && energy_violations == 0 && delta_lobes == 0;

@@ -123,16 +123,7 @@ Item make_item(std::mt19937_64& rng, core::GlintModel model, const Modifier& mod
   return c;
 }
 
-ref::Terms ref_terms(const Item& c) {
-  ref::Surface s{c.x_obj, d3(c.n), d3(c.wo), c.dist};
-  s.t = d3(c.t);
-  s.b = d3(c.b);
-  s.uv = glm::dvec2(c.uv[0], c.uv[1]);
-  s.duv_dx = glm::dvec2(c.duv_dx[0], c.duv_dx[1]);
-  s.duv_dy = glm::dvec2(c.duv_dy[0], c.duv_dy[1]);
-  ref::Light l{d3(c.wi), d3(c.L_i), d3(c.L_sky), c.cone};
-  return ref::sand_terms(ref::from_gpu(c.p), s, l);
-}
+ref::Terms ref_terms(const Item& c) { return reference::harness::sand_terms_of(c); }
 
 struct SandCaseSpec {
   std::string name;

@@ -3,6 +3,7 @@
 #include "core/vk/compute_harness.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace glintlab::reference::harness {
 
@@ -51,6 +52,17 @@ void write_sand_terms_input(const SandTermsInput& c, float* in) {
   put3(77, c.b);
   for (int i = 0; i < 2; ++i) in[80 + i] = c.uv[i], in[82 + i] = c.duv_dx[i], in[84 + i] = c.duv_dy[i];
   in[86] = c.cone;
+}
+
+sand::Terms sand_terms_of(const SandTermsInput& c, const sand::Features& features) {
+  sand::Surface s{c.x_obj, d3(c.n), d3(c.wo), c.dist};
+  s.t = d3(c.t);
+  s.b = d3(c.b);
+  s.uv = glm::dvec2(c.uv[0], c.uv[1]);
+  s.duv_dx = glm::dvec2(c.duv_dx[0], c.duv_dx[1]);
+  s.duv_dy = glm::dvec2(c.duv_dy[0], c.duv_dy[1]);
+  sand::Light l{d3(c.wi), d3(c.L_i), d3(c.L_sky), c.cone};
+  return sand::sand_terms(sand::from_gpu(c.p), s, l, features);
 }
 
 void round_to_f32(GlintTermsInput& c) {
@@ -103,6 +115,22 @@ glint::Roughness gpu_roughness(const float* o, const GlintTermsInput& c) {
   rg.cone = o[23];
   rg.hv_blend = c.p.half_vector_blend;
   return rg;
+}
+
+GlintRadiance glint_radiance_of(const float* o, const GlintTermsInput& c, const glint::Frame& f,
+                                const glint::Roughness& rg) {
+  auto o3 = [](const float* v) { return glint::vec3(v[0], v[1], v[2]); };
+  const glint::vec3 D = c.model == glint::kGlintBeckmann ? glint::vec3(o[24])
+                        : c.model == glint::kGlintGrains ? o3(o + 60)
+                                                         : o3(o + 56);
+  GlintRadiance r;
+  r.L = glint::glint_radiance(D, f, rg, c.p.ior, c.L_i, c.p.intensity);
+  r.L_max = std::max({r.L.x, r.L.y, r.L.z});
+  r.G_over_4cos = f.valid ? 0.25 * glint::smith_G2_over_cos_o(f.wi, f.wo, f.h, rg.alpha_surface) : 0.0;
+  const double D_max = std::max({std::fabs(D.x), std::fabs(D.y), std::fabs(D.z)});
+  const double Li_max = std::max({c.L_i.x, c.L_i.y, c.L_i.z});
+  r.fresnel_allowance = 1.5e-6 * r.G_over_4cos * D_max * Li_max * c.p.intensity;
+  return r;
 }
 
 }  // namespace glintlab::reference::harness

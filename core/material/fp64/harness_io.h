@@ -36,6 +36,8 @@ struct SandTermsInput {
   float cone = 0;  // the sun's angular radius
 };
 void write_sand_terms_input(const SandTermsInput& c, float* in);  // kSandTermsIn floats
+// The fp64 twin's terms of the same shading point.
+sand::Terms sand_terms_of(const SandTermsInput& c, const sand::Features& features = {});
 
 // ---- shaders/tests/glint_terms.comp: every stage of the glint models
 constexpr size_t kGlintTermsIn = 40, kGlintTermsOut = 72;
@@ -52,5 +54,17 @@ std::vector<float> run_glint_terms(core::VkContext& ctx, const std::vector<Glint
 // The GPU's GlintRoughness from an output record (outputs 10-23), for the
 // stages after it; the half-vector blend is the input's.
 glint::Roughness gpu_roughness(const float* out, const GlintTermsInput& c);
+
+// glint_term's radiance from the GPU's own D of the model (outputs 24, 56,
+// 60), in fp64: L, its largest channel, and the absolute error Schlick's F
+// carries (1e-6, relative to f0 -> 0 at ior 1) scaled into radiance.
+struct GlintRadiance {
+  glint::vec3 L;
+  double L_max = 0;
+  double G_over_4cos = 0;  // G2 / (4 cos_o): the microfacet factor's scale
+  double fresnel_allowance = 0;  // 1.5e-6 G_over_4cos max|D| max(L_i) intensity
+};
+GlintRadiance glint_radiance_of(const float* out, const GlintTermsInput& c, const glint::Frame& f,
+                                const glint::Roughness& rg);
 
 }  // namespace glintlab::reference::harness

@@ -738,18 +738,12 @@ TEST(GlintGpu, ModelTermsMatchFp64OnRandomAndExtremeInputs) {
       }
     }
     // radiance: glint_term's L from the GPU's own D of the model
-    vec3 D = c.model == gr::kGlintBeckmann ? vec3(o[24]) : (c.model == gr::kGlintGrains ? o3(o + 60) : o3(o + 56));
-    vec3 L = gr::glint_radiance(D, fg, rg, c.p.ior, c.L_i, c.p.intensity);
-    double Ls = std::max({L.x, L.y, L.z});
-    // Schlick's F carries 1e-6 absolute (f0 -> 0 at ior 1 makes that relative): F's part of the bound
-    double Gc = fg.valid ? 0.25 * gr::smith_G2_over_cos_o(fg.wi, fg.wo, h, rg.alpha_surface) : 0.0;
-    double Dmax = std::max({std::fabs(D.x), std::fabs(D.y), std::fabs(D.z)});
-    double Lmax = std::max({c.L_i.x, c.L_i.y, c.L_i.z});
+    const reference::harness::GlintRadiance R = reference::harness::glint_radiance_of(o, c, fg, rg);
     for (int k = 0; k < 3; ++k)
-      chk("radiance", o[63 + k], L[k], 2e-5, 2e-5 * Ls + 1.5e-6 * Gc * Dmax * Lmax * c.p.intensity + 1e-30);
+      chk("radiance", o[63 + k], R.L[k], 2e-5, 2e-5 * R.L_max + R.fresnel_allowance + 1e-30);
     EXPECT_EQ(o[66], c.model == gr::kGlintZirr && fg.valid ? o[59] : 0.0f) << i;
     vec3 brdf = gr::glint_radiance(vec3(1), fg, rg, c.p.ior, vec3(1), 1.0);
-    for (int k = 0; k < 3; ++k) chk("microfacet factor", o[67 + k], brdf[k], 2e-5, 1.5e-6 * Gc + 1e-30);
+    for (int k = 0; k < 3; ++k) chk("microfacet factor", o[67 + k], brdf[k], 2e-5, 1.5e-6 * R.G_over_4cos + 1e-30);
   }
   EXPECT_EQ(nonfinite, 0u);
   EXPECT_EQ(negative, 0u);

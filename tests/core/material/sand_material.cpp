@@ -426,16 +426,7 @@ std::vector<Case> make_cases(size_t n_random, uint64_t seed) {
   return cases;
 }
 
-ref::Terms ref_terms(const Case& c, const ref::Features& ft = {}) {
-  ref::Surface s{c.x_obj, d3(c.n), d3(c.wo), c.dist};
-  s.t = d3(c.t);
-  s.b = d3(c.b);
-  s.uv = glm::dvec2(c.uv[0], c.uv[1]);
-  s.duv_dx = glm::dvec2(c.duv_dx[0], c.duv_dx[1]);
-  s.duv_dy = glm::dvec2(c.duv_dy[0], c.duv_dy[1]);
-  ref::Light l{d3(c.wi), d3(c.L_i), d3(c.L_sky), c.cone};
-  return ref::sand_terms(ref::from_gpu(c.p), s, l, ft);
-}
+ref::Terms ref_terms(const Case& c, const ref::Features& ft = {}) { return reference::harness::sand_terms_of(c, ft); }
 
 std::vector<float> run(core::VkContext& ctx, const std::vector<Case>& cases, const std::vector<std::string>& defines) {
   std::vector<float> in(cases.size() * kIn, 0.0f);
