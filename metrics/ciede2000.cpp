@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "metrics/parallel.h"
 
@@ -22,12 +24,6 @@ double hue_deg(double b, double a_prime) {
 }
 }  // namespace
 
-double lab_f(double t) {
-  constexpr double d = 6.0 / 29.0;
-  if (t > d * d * d) return std::cbrt(t);
-  return t / (3.0 * d * d) + 4.0 / 29.0;
-}
-
 Lab xyz_to_lab(double X, double Y, double Z) {
   const double fx = lab_f(X / kLabWhiteX), fy = lab_f(Y / kLabWhiteY), fz = lab_f(Z / kLabWhiteZ);
   return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
@@ -35,12 +31,13 @@ Lab xyz_to_lab(double X, double Y, double Z) {
 
 double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double kH) {
   // Sharma et al. 2005, step 1: C'_i, h'_i with a'_i = (1 + G) a_i.
-  const double C1ab = std::hypot(lab1.a, lab1.b), C2ab = std::hypot(lab2.a, lab2.b);
+  // (Chromas as sqrt(a^2 + b^2): L*a*b* values are far from overflow, and hypot costs 4x as much.)
+  const double C1ab = std::sqrt(lab1.a * lab1.a + lab1.b * lab1.b), C2ab = std::sqrt(lab2.a * lab2.a + lab2.b * lab2.b);
   const double Cab_bar = 0.5 * (C1ab + C2ab);
   const double Cab2 = Cab_bar * Cab_bar, Cab7 = Cab2 * Cab2 * Cab2 * Cab_bar;
   const double G = 0.5 * (1.0 - std::sqrt(Cab7 / (Cab7 + 6103515625.0)));  // 25^7
   const double a1p = (1.0 + G) * lab1.a, a2p = (1.0 + G) * lab2.a;
-  const double C1p = std::hypot(a1p, lab1.b), C2p = std::hypot(a2p, lab2.b);
+  const double C1p = std::sqrt(a1p * a1p + lab1.b * lab1.b), C2p = std::sqrt(a2p * a2p + lab2.b * lab2.b);
   const double h1p = hue_deg(lab1.b, a1p), h2p = hue_deg(lab2.b, a2p);
   // step 2: ΔL', ΔC', Δh' (0 when a chroma is 0), ΔH'.
   const double dLp = lab2.L - lab1.L;
@@ -62,8 +59,17 @@ double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double 
     else if (h1p + h2p < 360.0) hp_bar = 0.5 * (h1p + h2p + 360.0);
     else hp_bar = 0.5 * (h1p + h2p - 360.0);
   }
-  const double T = 1.0 - 0.17 * std::cos((hp_bar - 30.0) * kDeg) + 0.24 * std::cos(2.0 * hp_bar * kDeg) +
-                   0.32 * std::cos((3.0 * hp_bar + 6.0) * kDeg) - 0.20 * std::cos((4.0 * hp_bar - 63.0) * kDeg);
+  // T = 1 - 0.17 cos(h - 30°) + 0.24 cos 2h + 0.32 cos(3h + 6°) - 0.20 cos(4h - 63°), from one cos/sin
+  // pair through the multiple-angle and angle-sum identities (four cosines cost more than the ΔE itself).
+  const double c1 = std::cos(hp_bar * kDeg), s1 = std::sin(hp_bar * kDeg);
+  const double c2 = 2.0 * c1 * c1 - 1.0, s2 = 2.0 * s1 * c1;
+  const double c3 = c1 * (2.0 * c2 - 1.0), s3 = s1 * (2.0 * c2 + 1.0);  // 4c^3 - 3c, 3s - 4s^3
+  const double c4 = 2.0 * c2 * c2 - 1.0, s4 = 2.0 * s2 * c2;
+  constexpr double kCos30 = 0.86602540378443864676, kSin30 = 0.5;
+  constexpr double kCos6 = 0.99452189536827333692, kSin6 = 0.10452846326765347140;
+  constexpr double kCos63 = 0.45399049973954679156, kSin63 = 0.89100652418836786236;
+  const double T = 1.0 - 0.17 * (c1 * kCos30 + s1 * kSin30) + 0.24 * c2 + 0.32 * (c3 * kCos6 - s3 * kSin6) -
+                   0.20 * (c4 * kCos63 + s4 * kSin63);
   const double hq = (hp_bar - 275.0) / 25.0;
   const double dtheta = 30.0 * std::exp(-hq * hq);
   const double Cp2 = Cp_bar * Cp_bar, Cp7 = Cp2 * Cp2 * Cp2 * Cp_bar;
@@ -74,17 +80,33 @@ double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double 
   const double S_H = 1.0 + 0.015 * Cp_bar * T;
   const double R_T = -std::sin(2.0 * dtheta * kDeg) * R_C;
   const double tL = dLp / (kL * S_L), tC = dCp / (kC * S_C), tH = dHp / (kH * S_H);
-  // |R_T| <= 2 makes the sum >= (|tC| - |tH|)^2 >= 0; max() only absorbs rounding.
-  return std::sqrt(std::max(0.0, tL * tL + tC * tC + tH * tH + R_T * tC * tH));
+  // |R_T| <= 2 makes the sum >= (|tC| - |tH|)^2 >= 0; the clamp only absorbs rounding (and passes NaN,
+  // which std::max(0.0, NaN) would turn into 0).
+  const double sum = tL * tL + tC * tC + tH * tH + R_T * tC * tH;
+  return std::sqrt(sum < 0.0 ? 0.0 : sum);
 }
 
 Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz) {
   require_same_size(test_xyz, ref_xyz, "ciede2000_map");
+  return ciede2000_map(test_xyz, lab_image(ref_xyz));
+}
+
+LabImage lab_image(const Image& xyz) {
+  if (xyz.channels < 3) throw std::invalid_argument("lab_image: the image needs >= 3 channels (X, Y, Z)");
+  LabImage out{xyz.width, xyz.height, std::vector<Lab>(xyz.pixel_count())};
+  parallel_for(long(out.lab.size()), [&](long i) {
+    const float* p = xyz.data.data() + i * xyz.channels;
+    out.lab[size_t(i)] = xyz_to_lab(p[0], p[1], p[2]);
+  });
+  return out;
+}
+
+Image ciede2000_map(const Image& test_xyz, const LabImage& ref_lab) {
+  require_reference_size(test_xyz, ref_lab.width, ref_lab.height, "ciede2000_map");
   Image m(test_xyz.width, test_xyz.height, 1);
   parallel_for(long(m.pixel_count()), [&](long i) {
     const float* t = test_xyz.data.data() + i * test_xyz.channels;
-    const float* r = ref_xyz.data.data() + i * ref_xyz.channels;
-    m.data[i] = float(ciede2000(xyz_to_lab(t[0], t[1], t[2]), xyz_to_lab(r[0], r[1], r[2])));
+    m.data[size_t(i)] = float(ciede2000(xyz_to_lab(t[0], t[1], t[2]), ref_lab.lab[size_t(i)]));
   });
   return m;
 }

@@ -6,8 +6,10 @@
 #include "metrics/parallel.h"
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "metrics/error_metrics.h"
+#include "metrics/vector_math.h"
 
 namespace glintlab::metrics {
 
@@ -54,11 +56,22 @@ Mat3 rgb_to_xyz_npm(double xr, double yr, double xg, double yg, double xb, doubl
   return M;
 }
 
+void pq_inverse_eotf_n(const double* luminance_nits, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    double v = luminance_nits[i];
+    if (!(v > 0.0)) v = 0.0;        // also NaN
+    out[i] = std::min(v, 1e30) / 10000.0;  // +inf: keep the powers finite
+  }
+  // SMPTE ST 2084 inverse EOTF: ((c1 + c2 Y^m1) / (1 + c3 Y^m1))^m2, Y = L / 10000.
+  pow_n(out, kPqM1, out, n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = (kPqC1 + kPqC2 * out[i]) / (1.0 + kPqC3 * out[i]);
+  pow_n(out, kPqM2, out, n);
+}
+
 double pq_inverse_eotf(double luminance_nits) {
-  if (!(luminance_nits > 0.0)) luminance_nits = 0.0;  // also NaN
-  luminance_nits = std::min(luminance_nits, 1e30);     // +inf: keep pow finite
-  const double Ym1 = std::pow(luminance_nits / 10000.0, kPqM1);
-  return std::pow((kPqC1 + kPqC2 * Ym1) / (1.0 + kPqC3 * Ym1), kPqM2);  // SMPTE ST 2084 inverse EOTF
+  double code;
+  pq_inverse_eotf_n(&luminance_nits, &code, 1);
+  return code;
 }
 
 double pq_eotf(double code_value) {
@@ -82,18 +95,42 @@ const Mat3& xyz_to_bt2100_lms() {
   return m;
 }
 
-ICtCp xyz_to_ictcp(double X, double Y, double Z, double luminance_nits) {
+namespace {
+// ICtCp of `count` colours given as relative XYZ (xyz[3 i ...]) with Y = 1 at `luminance_nits`: LMS,
+// PQ of all 3 count values in one call, then ITU-R BT.2100's I, Ct, Cp. A NaN LMS value stays NaN.
+void xyz_to_ictcp_n(const double* xyz, std::size_t count, double luminance_nits, ICtCp* out) {
   const Mat3& M = xyz_to_bt2100_lms();
-  const double Xa = X * luminance_nits, Ya = Y * luminance_nits, Za = Z * luminance_nits;
-  double lms_p[3];
-  for (int i = 0; i < 3; ++i) {
-    const double v = M[3 * i] * Xa + M[3 * i + 1] * Ya + M[3 * i + 2] * Za;
-    lms_p[i] = std::isnan(v) ? v : pq_inverse_eotf(v);  // NaN input stays NaN
+  std::vector<double> lms(3 * count), lms_p(3 * count);
+  for (std::size_t j = 0; j < count; ++j) {
+    const double Xa = xyz[3 * j] * luminance_nits, Ya = xyz[3 * j + 1] * luminance_nits,
+                 Za = xyz[3 * j + 2] * luminance_nits;
+    for (int i = 0; i < 3; ++i) lms[3 * j + i] = M[3 * i] * Xa + M[3 * i + 1] * Ya + M[3 * i + 2] * Za;
   }
-  // ITU-R BT.2100: I, Ct, Cp from L'M'S'.
-  return {0.5 * lms_p[0] + 0.5 * lms_p[1],
-          (6610.0 * lms_p[0] - 13613.0 * lms_p[1] + 7003.0 * lms_p[2]) / 4096.0,
-          (17933.0 * lms_p[0] - 17390.0 * lms_p[1] - 543.0 * lms_p[2]) / 4096.0};
+  pq_inverse_eotf_n(lms.data(), lms_p.data(), lms.size());
+  for (std::size_t j = 0; j < count; ++j) {
+    double p[3];
+    for (int i = 0; i < 3; ++i) p[i] = std::isnan(lms[3 * j + i]) ? lms[3 * j + i] : lms_p[3 * j + i];
+    out[j] = {0.5 * p[0] + 0.5 * p[1], (6610.0 * p[0] - 13613.0 * p[1] + 7003.0 * p[2]) / 4096.0,
+              (17933.0 * p[0] - 17390.0 * p[1] - 543.0 * p[2]) / 4096.0};
+  }
+}
+
+// The ICtCp of row y of an XYZ image.
+void row_ictcp(const Image& xyz, long y, double luminance_nits, ICtCp* out) {
+  const std::size_t w = std::size_t(xyz.width);
+  std::vector<double> row(3 * w);
+  const float* p = xyz.data.data() + std::size_t(y) * w * xyz.channels;
+  for (std::size_t x = 0; x < w; ++x)
+    for (int c = 0; c < 3; ++c) row[3 * x + c] = p[x * xyz.channels + c];
+  xyz_to_ictcp_n(row.data(), w, luminance_nits, out);
+}
+}  // namespace
+
+ICtCp xyz_to_ictcp(double X, double Y, double Z, double luminance_nits) {
+  const double xyz[3] = {X, Y, Z};
+  ICtCp c;
+  xyz_to_ictcp_n(xyz, 1, luminance_nits, &c);
+  return c;
 }
 
 double delta_e_itp(const ICtCp& c1, const ICtCp& c2) {
@@ -102,17 +139,36 @@ double delta_e_itp(const ICtCp& c1, const ICtCp& c2) {
   return 720.0 * std::sqrt(dI * dI + dT * dT + dP * dP);
 }
 
+namespace {
+void check_nits(double luminance_nits, const char* who) {
+  if (!(luminance_nits > 0.0) || !std::isfinite(luminance_nits))
+    throw std::invalid_argument(std::string(who) + ": luminance_nits (cd/m^2 for Y = 1) must be finite and > 0, got " +
+                                std::to_string(luminance_nits));
+}
+}  // namespace
+
 Image delta_e_itp_map(const Image& test_xyz, const Image& ref_xyz, double luminance_nits) {
   require_same_size(test_xyz, ref_xyz, "delta_e_itp_map");
-  if (!(luminance_nits > 0.0) || !std::isfinite(luminance_nits))
-    throw std::invalid_argument("delta_e_itp_map: luminance_nits (cd/m^2 for Y = 1) must be finite and > 0, got " +
-                                std::to_string(luminance_nits));
+  check_nits(luminance_nits, "delta_e_itp_map");
+  return delta_e_itp_map(test_xyz, ictcp_image(ref_xyz, luminance_nits));
+}
+
+ICtCpImage ictcp_image(const Image& xyz, double luminance_nits) {
+  if (xyz.channels < 3) throw std::invalid_argument("ictcp_image: the image needs >= 3 channels (X, Y, Z)");
+  check_nits(luminance_nits, "ictcp_image");
+  ICtCpImage out{xyz.width, xyz.height, luminance_nits, std::vector<ICtCp>(xyz.pixel_count())};
+  parallel_for(xyz.height, [&](long y) { row_ictcp(xyz, y, luminance_nits, &out.ictcp[size_t(y) * xyz.width]); });
+  return out;
+}
+
+Image delta_e_itp_map(const Image& test_xyz, const ICtCpImage& ref) {
+  require_reference_size(test_xyz, ref.width, ref.height, "delta_e_itp_map");
   Image m(test_xyz.width, test_xyz.height, 1);
-  parallel_for(long(m.pixel_count()), [&](long i) {
-    const float* t = test_xyz.data.data() + i * test_xyz.channels;
-    const float* r = ref_xyz.data.data() + i * ref_xyz.channels;
-    m.data[i] = float(delta_e_itp(xyz_to_ictcp(t[0], t[1], t[2], luminance_nits),
-                                  xyz_to_ictcp(r[0], r[1], r[2], luminance_nits)));
+  const std::size_t w = std::size_t(test_xyz.width);
+  parallel_for(test_xyz.height, [&](long y) {
+    std::vector<ICtCp> t(w);
+    row_ictcp(test_xyz, y, ref.luminance_nits, t.data());
+    for (std::size_t x = 0, i = std::size_t(y) * w; x < w; ++x, ++i) m.data[i] = float(delta_e_itp(t[x], ref.ictcp[i]));
   });
   return m;
 }

@@ -10,6 +10,9 @@
 // 10000 cd/m^2 are not clamped (PQ code values > 1).
 #pragma once
 
+#include <cstddef>
+#include <vector>
+
 #include <array>
 
 #include "core/util/image.h"
@@ -29,6 +32,9 @@ Mat3 rgb_to_xyz_npm(double xr, double yr, double xg, double yg, double xb, doubl
 // SMPTE ST 2084 inverse EOTF: absolute luminance in cd/m^2 -> PQ code value (1 at 10000 cd/m^2).
 // Inputs <= 0 or NaN give the code value of 0 cd/m^2 (c1^m2 ≈ 7.3e-7); +inf is treated as 1e30 cd/m^2.
 double pq_inverse_eotf(double luminance_nits);
+// The same for n values (the scalar function is this with n = 1: identical results). In-place allowed.
+// Through metrics/vector_math.h, about three times the throughput of a loop over std::pow.
+void pq_inverse_eotf_n(const double* luminance_nits, double* out, std::size_t n);
 // SMPTE ST 2084 EOTF: PQ code value in [0, 1] -> cd/m^2.
 double pq_eotf(double code_value);
 
@@ -52,5 +58,16 @@ double delta_e_itp(const ICtCp& c1, const ICtCp& c2);
 // Per-pixel ΔE_ITP between two relative CIE XYZ images, 1 channel.
 Image delta_e_itp_map(const Image& test_xyz, const Image& ref_xyz,
                       double luminance_nits = kItpDefaultLuminanceNits);
+
+// The reference side of delta_e_itp_map converted once, for many test images: the ICtCp of every pixel
+// at `luminance_nits` (validated as in delta_e_itp_map).
+struct ICtCpImage {
+  int width = 0, height = 0;
+  double luminance_nits = kItpDefaultLuminanceNits;
+  std::vector<ICtCp> ictcp;
+};
+ICtCpImage ictcp_image(const Image& xyz, double luminance_nits = kItpDefaultLuminanceNits);
+// Equals delta_e_itp_map(test_xyz, ref_xyz, n) exactly for ref = ictcp_image(ref_xyz, n).
+Image delta_e_itp_map(const Image& test_xyz, const ICtCpImage& ref);
 
 }  // namespace glintlab::metrics

@@ -24,6 +24,13 @@ void require_same_size(const Image& test, const Image& ref, const char* who) {
                                 size_str(test) + ", reference is " + size_str(ref));
 }
 
+void require_reference_size(const Image& test, int ref_width, int ref_height, const char* who) {
+  if (test.width != ref_width || test.height != ref_height || test.channels < 3)
+    throw std::invalid_argument(std::string(who) + ": test image is " + size_str(test) + " but the reference is " +
+                                std::to_string(ref_width) + "x" + std::to_string(ref_height) +
+                                " (width x height; the test needs >= 3 channels)");
+}
+
 Image luminance(const Image& xyz) {
   if (xyz.channels < 3) throw std::invalid_argument("luminance: image needs >= 3 channels (X, Y, Z)");
   Image y(xyz.width, xyz.height, 1);

@@ -18,6 +18,9 @@ constexpr double kRelativeErrorEpsilon = 1e-2;
 // Throws std::invalid_argument naming `who` and both sizes when the images differ in size, or when
 // either has fewer than 3 channels.
 void require_same_size(const Image& test, const Image& ref, const char* who);
+// For a reference converted once (HDR-FLIP, ΔE00, ΔE_ITP): throws std::invalid_argument naming `who`
+// unless the test image is ref_width x ref_height with >= 3 channels.
+void require_reference_size(const Image& test, int ref_width, int ref_height, const char* who);
 
 // Y channel (index 1) of a CIE XYZ image as a 1-channel image.
 Image luminance(const Image& xyz);

@@ -12,10 +12,31 @@
 
 namespace glintlab::metrics {
 
-double perceptual_luminance(double Y, double reference_nits) {
-  if (std::isnan(Y)) return Y;
-  return pq_inverse_eotf(std::max(Y, 0.0) * reference_nits);
+void perceptual_luminance_n(const double* Y, double* out, std::size_t n, double reference_nits) {
+  std::vector<double> nits(n);
+  for (std::size_t i = 0; i < n; ++i) nits[i] = std::isnan(Y[i]) ? 0.0 : std::max(Y[i], 0.0) * reference_nits;
+  pq_inverse_eotf_n(nits.data(), nits.data(), n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::isnan(Y[i]) ? Y[i] : nits[i];
 }
+
+double perceptual_luminance(double Y, double reference_nits) {
+  double pq;
+  perceptual_luminance_n(&Y, &pq, 1, reference_nits);
+  return pq;
+}
+
+namespace {
+// perceptual_luminance of every value of a float plane, in rows of work spread over the threads.
+std::vector<double> perceptual_luminance_plane(const std::vector<float>& y, int w, int h) {
+  std::vector<double> pq(y.size());
+  parallel_for(h, [&](long row) {
+    const std::size_t o = std::size_t(row) * w;
+    std::vector<double> v(y.begin() + o, y.begin() + o + w);
+    perceptual_luminance_n(v.data(), pq.data() + o, std::size_t(w));
+  });
+  return pq;
+}
+}  // namespace
 
 double flicker_ratio(double mean_test, double mean_ref) {
   if (std::isnan(mean_test) || std::isnan(mean_ref)) return std::numeric_limits<double>::quiet_NaN();
@@ -99,11 +120,8 @@ FlickerReference flicker_reference(const Image& ref_xyz) {
   r.height = ref_xyz.height;
   const long n = long(ref_xyz.pixel_count());
   r.y.resize(size_t(n));
-  r.pq.resize(size_t(n));
-  parallel_for(n, [&](long i) {
-    r.y[size_t(i)] = ref_xyz.data[size_t(i) * ref_xyz.channels + 1];
-    r.pq[size_t(i)] = perceptual_luminance(r.y[size_t(i)]);
-  });
+  for (long i = 0; i < n; ++i) r.y[size_t(i)] = ref_xyz.data[size_t(i) * ref_xyz.channels + 1];
+  r.pq = perceptual_luminance_plane(r.y, r.width, r.height);
   r.adaptation = adaptation_luminance(ref_xyz);
   return r;
 }
@@ -125,12 +143,11 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
   const int w = test_xyz.width, h = test_xyz.height;
   const std::size_t n = test_xyz.pixel_count();
   std::vector<float> yt(n), dist(n);
-  std::vector<double> pqt(n);
-  parallel_for(long(n), [&](long i) {
-    yt[size_t(i)] = test_xyz.data[size_t(i) * test_xyz.channels + 1];
-    pqt[size_t(i)] = perceptual_luminance(yt[size_t(i)]);
-    dist[size_t(i)] = motion.data[size_t(i) * motion.channels + 2];
-  });
+  for (std::size_t i = 0; i < n; ++i) {
+    yt[i] = test_xyz.data[i * test_xyz.channels + 1];
+    dist[i] = motion.data[i * motion.channels + 2];
+  }
+  std::vector<double> pqt = perceptual_luminance_plane(yt, w, h);
   std::optional<FlickerFrame> result;
   if (pushed_ > 0) {
     const std::vector<Reprojected> warp = reproject(motion, prev_dist_);
@@ -140,9 +157,20 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
       std::size_t valid = 0, disoccluded = 0, background = 0;
     };
     std::vector<Row> rows(static_cast<size_t>(h));
-    auto pq = [](double Y) { return perceptual_luminance(Y); };
     parallel_for(h, [&](long y) {
       Row& row = rows[size_t(y)];
+      // The previous frames resampled along the motion at the row's valid pixels, and their PQ in one call.
+      std::vector<double> prev(2 * std::size_t(w)), prev_pq(2 * std::size_t(w));
+      std::size_t valid = 0;
+      for (int x = 0; x < w; ++x) {
+        const Reprojected& rp = warp[std::size_t(y) * w + x];
+        if (rp.state != Reprojected::kValid) continue;
+        prev[2 * valid] = rp.sample(prev_yt_);
+        prev[2 * valid + 1] = rp.sample(prev_ref_.y);
+        ++valid;
+      }
+      perceptual_luminance_n(prev.data(), prev_pq.data(), 2 * valid);
+      std::size_t k = 0;  // the next valid pixel's entry
       for (int x = 0; x < w; ++x) {
         const std::size_t i = std::size_t(y) * w + x;
         // Fixed-pixel terms over every pixel.
@@ -160,12 +188,14 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
           ++row.disoccluded;
           continue;
         }
-        const double t_prev = rp.sample(prev_yt_), r_prev = rp.sample(prev_ref_.y);
+        const double t_prev = prev[2 * k], r_prev = prev[2 * k + 1];
+        const double pq_t_prev = prev_pq[2 * k], pq_r_prev = prev_pq[2 * k + 1];
+        ++k;
         ++row.valid;
         const double denom = double(ref.adaptation[i]) + kContrastEpsilon;
         row.ct += std::abs(double(yt[i]) - t_prev) / denom;
         row.cr += std::abs(double(ref.y[i]) - r_prev) / denom;
-        row.emc += std::abs((pqt[i] - ref.pq[i]) - (pq(t_prev) - pq(r_prev)));
+        row.emc += std::abs((pqt[i] - ref.pq[i]) - (pq_t_prev - pq_r_prev));
       }
     });
     FlickerFrame f;

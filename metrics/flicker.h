@@ -59,6 +59,9 @@ constexpr double kSilhouetteTolerance = 0.25;    // any single tap vs the point'
 
 // PQ(max(Y, 0) * reference_nits): the perceptual luminance of temporal_error.
 double perceptual_luminance(double Y, double reference_nits = kFlickerReferenceNits);
+// The same for n values (NaN stays NaN; the scalar function is this with n = 1). In-place allowed.
+void perceptual_luminance_n(const double* Y, double* out, std::size_t n,
+                            double reference_nits = kFlickerReferenceNits);
 
 // a / b with the sentinels of a ratio of non-negative means: 0/0 -> 1 (both
 // still: as stable as the truth), x/0 -> +inf, NaN in -> NaN.

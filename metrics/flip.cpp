@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 
 #include "metrics/delta_e_itp.h"
 #include "metrics/error_metrics.h"
+#include "metrics/vector_math.h"
 
 namespace glintlab::metrics {
 
@@ -58,12 +60,14 @@ const double* tone_coefficients(FlipToneMapper tm) {
 // BT.709 luma coefficients on linear RGB: FLIP's luminance for the exposure range and for Reinhard.
 constexpr double kLum[3] = {0.2126, 0.7152, 0.0722};
 
-// Rational tone curve of one channel: negative -> 0, +inf stays finite (-> k0/k3), clamped to [0, 1].
-double rational_tonemap(const double* k, double x) {
-  if (std::isnan(x)) return x;
-  x = std::clamp(x, 0.0, 1e30);
-  const double y = (k[0] * x * x + k[1] * x + k[2]) / (k[3] * x * x + k[4] * x + k[5]);
-  return std::clamp(y, 0.0, 1.0);
+// Rational tone curve of one channel: negative -> 0, large values (+inf included) held at 1e18 where
+// every curve is above 1, clamped to [0, 1]; NaN stays NaN. Branch-free (the comparisons select), in
+// double for the public functions and in float for FLIP's per-pixel pipeline (1e18 squared is finite).
+template <typename T>
+T rational_tonemap(const T* k, T x) {
+  x = x < T(0) ? T(0) : (x > T(1e18) ? T(1e18) : x);
+  const T y = (k[0] * x * x + k[1] * x + k[2]) / (k[3] * x * x + k[4] * x + k[5]);
+  return y < T(0) ? T(0) : (y > T(1) ? T(1) : y);
 }
 
 using Plane = std::vector<float>;
@@ -86,18 +90,32 @@ const Rec709& rec709() {
 }
 
 // Linear RGB in [0,1] -> Hunt-adjusted L*a*b* (FLIP 2020, perceptually uniform colour space:
-// a* and b* scaled by 0.01 L*).
-void hunt_lab(double r, double g, double b, double out[3]) {
-  const Rec709& c = rec709();
-  const Mat3& M = c.rgb2xyz;
-  const double fx = lab_f((M[0] * r + M[1] * g + M[2] * b) / c.white[0]);
-  const double fy = lab_f((M[3] * r + M[4] * g + M[5] * b) / c.white[1]);
-  const double fz = lab_f((M[6] * r + M[7] * g + M[8] * b) / c.white[2]);
-  const double L = 116.0 * fy - 16.0;
+// a* and b* scaled by 0.01 L*). `m` is the RGB -> XYZ matrix with each row divided by the white's
+// component (XYZ relative to the white), in T.
+template <typename T>
+void hunt_lab(T r, T g, T b, const T* m, T out[3]) {
+  const T fx = lab_f(m[0] * r + m[1] * g + m[2] * b);
+  const T fy = lab_f(m[3] * r + m[4] * g + m[5] * b);
+  const T fz = lab_f(m[6] * r + m[7] * g + m[8] * b);
+  const T L = T(116) * fy - T(16);
   out[0] = L;
-  out[1] = 0.01 * L * 500.0 * (fx - fy);
-  out[2] = 0.01 * L * 200.0 * (fy - fz);
+  out[1] = T(0.01) * L * T(500) * (fx - fy);
+  out[2] = T(0.01) * L * T(200) * (fy - fz);
 }
+
+// The matrices of the per-pixel pipeline in T: RGB -> white-relative XYZ, and back.
+template <typename T>
+struct ColourMatrices {
+  T to_rel_xyz[9], from_rel_xyz[9];
+  ColourMatrices() {
+    const Rec709& c = rec709();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        to_rel_xyz[3 * i + j] = T(c.rgb2xyz[3 * i + j] / c.white[i]);
+        from_rel_xyz[3 * i + j] = T(c.xyz2rgb[3 * i + j] * c.white[j]);
+      }
+  }
+};
 
 double hyab(const double p[3], const double q[3]) {  // FLIP 2020: HyAB = |ΔL| + ||Δ(a, b)||
   return std::abs(p[0] - q[0]) + std::hypot(p[1] - q[1], p[2] - q[2]);
@@ -106,9 +124,10 @@ double hyab(const double p[3], const double q[3]) {  // FLIP 2020: HyAB = |ΔL| 
 // c_max: HyAB^q_c between Hunt-adjusted green and blue, the most distant pair in the RGB cube.
 double flip_cmax() {
   static const double cmax = [] {
+    const ColourMatrices<double> m;
     double g[3], b[3];
-    hunt_lab(0, 1, 0, g);
-    hunt_lab(0, 0, 1, b);
+    hunt_lab(0.0, 1.0, 0.0, m.to_rel_xyz, g);
+    hunt_lab(0.0, 0.0, 1.0, m.to_rel_xyz, b);
     return std::pow(hyab(g, b), kQc);
   }();
   return cmax;
@@ -189,49 +208,62 @@ FlipKernels make_kernels(double ppd) {
   return K;
 }
 
-// d[x] (+)= k s[x]. Written in blocks of 8 with restrict pointers so that it vectorises at -O2
-// (GCC's very-cheap cost model needs a fixed trip count and no aliasing checks).
-inline void axpy(float* __restrict d, const float* __restrict s, float k, int n, bool first) {
+// d[x] = sum over taps j in order of k[j] src[j][x], for x < n: sixteen pixels at a time, their sums
+// in four registers of four floats (GCC/Clang vector extensions; SSE on x86-64), so that each tap costs
+// one load per pixel and no store. The same operations in the same order as a scalar loop.
+inline void weighted_sum(float* __restrict d, const float* const* src, const float* k, int taps, int n) {
+  typedef float f32x4 __attribute__((vector_size(16)));
+  auto load = [](const float* p) {
+    f32x4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  };
   int x = 0;
-  if (first) {
-    for (; x + 8 <= n; x += 8)
-      for (int i = 0; i < 8; ++i) d[x + i] = k * s[x + i];
-    for (; x < n; ++x) d[x] = k * s[x];
-  } else {
-    for (; x + 8 <= n; x += 8)
-      for (int i = 0; i < 8; ++i) d[x + i] += k * s[x + i];
-    for (; x < n; ++x) d[x] += k * s[x];
+  for (; x + 16 <= n; x += 16) {
+    f32x4 a0 = {0, 0, 0, 0}, a1 = a0, a2 = a0, a3 = a0;
+    for (int j = 0; j < taps; ++j) {
+      const float* s = src[j] + x;
+      const f32x4 kj = {k[j], k[j], k[j], k[j]};
+      a0 += kj * load(s);
+      a1 += kj * load(s + 4);
+      a2 += kj * load(s + 8);
+      a3 += kj * load(s + 12);
+    }
+    std::memcpy(d + x, &a0, sizeof a0);
+    std::memcpy(d + x + 4, &a1, sizeof a1);
+    std::memcpy(d + x + 8, &a2, sizeof a2);
+    std::memcpy(d + x + 12, &a3, sizeof a3);
+  }
+  for (; x < n; ++x) {
+    float acc = 0.0f;
+    for (int j = 0; j < taps; ++j) acc += k[j] * src[j][x];
+    d[x] = acc;
   }
 }
 
-// Horizontal correlation with replicated borders.
-void conv_rows(const Plane& src, Plane& dst, int w, int h, const Kernel& k, std::vector<float>& pad) {
+// One row correlated with k, borders replicated (pad, src: scratch).
+void filter_row(const float* s, float* d, int w, const Kernel& k, std::vector<float>& pad,
+                std::vector<const float*>& src) {
   const int r = k.radius();
   pad.resize(std::size_t(w) + 2 * r);
-  dst.resize(std::size_t(w) * h);
-  for (int y = 0; y < h; ++y) {
-    const float* s = src.data() + std::size_t(y) * w;
-    for (int i = 0; i < r; ++i) {
-      pad[i] = s[0];
-      pad[std::size_t(w) + r + i] = s[w - 1];
-    }
-    std::copy(s, s + w, pad.begin() + r);
-    float* d = dst.data() + std::size_t(y) * w;
-    for (int j = 0; j <= 2 * r; ++j) axpy(d, pad.data() + j, k.w[j], w, j == 0);
+  for (int i = 0; i < r; ++i) {
+    pad[i] = s[0];
+    pad[std::size_t(w) + r + i] = s[w - 1];
   }
+  std::copy(s, s + w, pad.begin() + r);
+  src.resize(std::size_t(2 * r + 1));
+  for (int j = 0; j <= 2 * r; ++j) src[j] = pad.data() + j;
+  weighted_sum(d, src.data(), k.w.data(), 2 * r + 1, w);
 }
 
-// Vertical correlation with replicated borders.
-void conv_cols(const Plane& src, Plane& dst, int w, int h, const Kernel& k) {
+// Row y of the vertical correlation with k (borders replicated) of rows held in a ring: row yy of the
+// input is at ring + (yy mod ring_rows) w (src: scratch).
+void filter_column(const float* ring, int ring_rows, int y, int h, int w, const Kernel& k, float* d,
+                   std::vector<const float*>& src) {
   const int r = k.radius();
-  dst.resize(std::size_t(w) * h);
-  for (int y = 0; y < h; ++y) {
-    float* d = dst.data() + std::size_t(y) * w;
-    for (int j = -r; j <= r; ++j) {
-      const int yy = std::clamp(y + j, 0, h - 1);
-      axpy(d, src.data() + std::size_t(yy) * w, k.w[j + r], w, j == -r);
-    }
-  }
+  src.resize(std::size_t(2 * r + 1));
+  for (int j = -r; j <= r; ++j) src[j + r] = ring + std::size_t(std::clamp(y + j, 0, h - 1) % ring_rows) * w;
+  weighted_sum(d, src.data(), k.w.data(), 2 * r + 1, w);
 }
 
 // Per-image state of LDR-FLIP: filtered Hunt-adjusted Lab and feature magnitudes.
@@ -239,110 +271,190 @@ struct Prepared {
   Plane L, A, B, edge, point;
 };
 
+// The horizontally filtered signals of the two pipelines, kept for a ring of rows.
+enum RowSignal { kRowA, kRowRG, kRowBY1, kRowBY2, kRowDG, kRowDDG, kRowG, kRowSignals };
+
+// Scratch of prepare(): one input row, the ring, one output row per vertical filter. About 0.4 MB
+// at 640 px wide, so it stays in a core's L2 cache (the planes of the whole image did not).
 struct Work {
-  Plane yc, cx, cz, ylum, t0, t1, t2, t3, t4;
-  std::vector<float> pad;
+  std::vector<float> r, g, b, yc, cx, cz, ylum, pad;
+  std::vector<const float*> taps;
+  std::vector<float> ring;                              // kRowSignals x ring_rows x w
+  std::vector<float> c_yc, c_cx, c_cz1, c_cz2, ex, ey, px, py;  // vertical filter outputs of one row
 };
 
-// src: linear sRGB (first three channels). LDR (exposure_scale <= 0): clamped to [0, 1]; HDR: scaled by
-// exposure_scale = 2^c and tone mapped with `tm` (HDR-FLIP), which also lands in [0, 1].
+// FLIP 2020: linear RGB -> white-relative XYZ (matrix m) -> YCxCz, and the luminance Y / Y_n that the
+// feature pipeline filters. (Separate functions with restrict pointers so that the loops vectorise.)
+void rgb_to_ycxcz(const float* __restrict R, const float* __restrict G, const float* __restrict B, const float* m,
+                  std::size_t n, float* __restrict yc, float* __restrict cx, float* __restrict cz,
+                  float* __restrict ylum) {
+  const float m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3], m4 = m[4], m5 = m[5], m6 = m[6], m7 = m[7], m8 = m[8];
+  for (std::size_t i = 0; i < n; ++i) {
+    const float x = m0 * R[i] + m1 * G[i] + m2 * B[i];
+    const float y = m3 * R[i] + m4 * G[i] + m5 * B[i];
+    const float z = m6 * R[i] + m7 * G[i] + m8 * B[i];
+    yc[i] = 116.0f * y - 16.0f;
+    cx[i] = 500.0f * (x - y);
+    cz[i] = 200.0f * (y - z);
+    ylum[i] = y;  // feature input: (Y' + 16) / 116 = Y / Y_n in [0, 1]
+  }
+}
+
+// The CSF-filtered YCxCz (Cz as w1 cz1 + w2 cz2, the two blue-yellow Gaussians) -> white-relative XYZ
+// -> linear RGB clamped to the RGB cube (matrix mi) -> Hunt-adjusted L*a*b* (matrix m).
+void filtered_ycxcz_to_hunt_lab(const float* __restrict yc, const float* __restrict cx, const float* __restrict cz1,
+                                const float* __restrict cz2, float w1, float w2, const float* m, const float* mi,
+                                std::size_t n, float* __restrict L, float* __restrict A, float* __restrict B) {
+  float mm[9], mmi[9];
+  std::copy(m, m + 9, mm);
+  std::copy(mi, mi + 9, mmi);
+  auto clamp01 = [](float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); };  // NaN passes
+  for (std::size_t i = 0; i < n; ++i) {
+    const float cz = w1 * cz1[i] + w2 * cz2[i];
+    const float y = (yc[i] + 16.0f) / 116.0f;
+    const float X = y + cx[i] / 500.0f, Y = y, Z = y - cz / 200.0f;
+    const float r = clamp01(mmi[0] * X + mmi[1] * Y + mmi[2] * Z);
+    const float g = clamp01(mmi[3] * X + mmi[4] * Y + mmi[5] * Z);
+    const float b = clamp01(mmi[6] * X + mmi[7] * Y + mmi[8] * Z);
+    float lab[3];
+    hunt_lab(r, g, b, mm, lab);
+    L[i] = lab[0];
+    A[i] = lab[1];
+    B[i] = lab[2];
+  }
+}
+
+// sqrt(a^2 + b^2) element-wise: the magnitude of the edge and point detectors.
+void magnitude(const float* __restrict a, const float* __restrict b, float* __restrict out, int n) {
+  for (int i = 0; i < n; ++i) out[i] = std::sqrt(a[i] * a[i] + b[i] * b[i]);
+}
+
+// n pixels of linear sRGB (stride ch) -> R, G, B in [0, 1]: LDR (exposure_scale <= 0) clamped; HDR
+// scaled by exposure_scale = 2^c and tone mapped with `tm` (HDR-FLIP). NaN stays NaN.
+void tonemap_row(const float* p, int ch, int n, double exposure_scale, FlipToneMapper tm, float* __restrict R,
+                 float* __restrict G, float* __restrict B) {
+  if (exposure_scale > 0.0 && tm != FlipToneMapper::Reinhard) {  // per-channel rational curve
+    const double* kd = tone_coefficients(tm);
+    const float k[6] = {float(kd[0]), float(kd[1]), float(kd[2]), float(kd[3]), float(kd[4]), float(kd[5])};
+    const float e = float(exposure_scale);
+    for (int i = 0; i < n; ++i) {
+      R[i] = rational_tonemap(k, e * p[i * ch]);
+      G[i] = rational_tonemap(k, e * p[i * ch + 1]);
+      B[i] = rational_tonemap(k, e * p[i * ch + 2]);
+    }
+  } else if (exposure_scale > 0.0) {  // Reinhard, on luminance
+    for (int i = 0; i < n; ++i) {
+      double c[3] = {exposure_scale * p[i * ch], exposure_scale * p[i * ch + 1], exposure_scale * p[i * ch + 2]};
+      flip_tonemap(tm, c);
+      R[i] = float(c[0]);
+      G[i] = float(c[1]);
+      B[i] = float(c[2]);
+    }
+  } else {
+    auto clamp01 = [](float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); };  // NaN passes
+    for (int i = 0; i < n; ++i) {
+      R[i] = clamp01(p[i * ch]);
+      G[i] = clamp01(p[i * ch + 1]);
+      B[i] = clamp01(p[i * ch + 2]);
+    }
+  }
+}
+
+// src: linear sRGB (first three channels), tone mapped per exposure as tonemap_row says. The
+// per-pixel stages run in single precision, as FLIP's own code, and without branches so that they
+// vectorise; NaN stays NaN through every stage (the clamps pass it).
+// The image streams through one row at a time: input row j is tone mapped, converted to YCxCz and
+// filtered horizontally by every kernel into a ring of 2R + 1 rows (R the largest vertical radius);
+// output row y is then the vertical filters over the ring, converted to Hunt-adjusted L*a*b* and
+// edge/point magnitudes. The same sums in the same order as filtering whole planes, in a working set
+// that fits in L2.
 void prepare(const Image& src, double exposure_scale, FlipToneMapper tm, const FlipKernels& K, Work& W,
              Prepared& P) {
   const int w = src.width, h = src.height;
-  const Rec709& c = rec709();
-  const Mat3& M = c.rgb2xyz;
   const std::size_t n = std::size_t(w) * h;
-  W.yc.resize(n);
-  W.cx.resize(n);
-  W.cz.resize(n);
-  W.ylum.resize(n);
-  // FLIP 2020: linear RGB -> XYZ -> YCxCz (opponent space, relative to the reference white).
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* p = src.data.data() + i * src.channels;
-    double r, g, b;
-    if (exposure_scale > 0.0) {
-      double c[3] = {exposure_scale * p[0], exposure_scale * p[1], exposure_scale * p[2]};
-      flip_tonemap(tm, c);
-      r = c[0];
-      g = c[1];
-      b = c[2];
-    } else {
-      r = std::isnan(p[0]) ? p[0] : std::clamp(double(p[0]), 0.0, 1.0);
-      g = std::isnan(p[1]) ? p[1] : std::clamp(double(p[1]), 0.0, 1.0);
-      b = std::isnan(p[2]) ? p[2] : std::clamp(double(p[2]), 0.0, 1.0);
-    }
-    const double x = (M[0] * r + M[1] * g + M[2] * b) / c.white[0];
-    const double y = (M[3] * r + M[4] * g + M[5] * b) / c.white[1];
-    const double z = (M[6] * r + M[7] * g + M[8] * b) / c.white[2];
-    W.yc[i] = float(116.0 * y - 16.0);
-    W.cx[i] = float(500.0 * (x - y));
-    W.cz[i] = float(200.0 * (y - z));
-    W.ylum[i] = float(y);  // feature input: (Y' + 16) / 116 = Y / Y_n in [0, 1]
+  static const ColourMatrices<float> cm;
+  const Kernel* rows[kRowSignals] = {&K.a, &K.rg, &K.by1, &K.by2, &K.dg, &K.ddg, &K.g};
+  int R = 0;
+  for (const Kernel* k : {&K.a, &K.rg, &K.by1, &K.by2, &K.g, &K.dg, &K.ddg}) R = std::max(R, k->radius());
+  const int ring_rows = 2 * R + 1;
+  for (std::vector<float>* v : {&W.r, &W.g, &W.b, &W.yc, &W.cx, &W.cz, &W.ylum, &W.c_yc, &W.c_cx, &W.c_cz1, &W.c_cz2,
+                                &W.ex, &W.ey, &W.px, &W.py})
+    v->resize(std::size_t(w));
+  W.ring.resize(std::size_t(kRowSignals) * ring_rows * w);
+  auto plane = [&](int s) { return W.ring.data() + std::size_t(s) * ring_rows * w; };
+  for (Plane* v : {&P.L, &P.A, &P.B, &P.edge, &P.point}) v->resize(n);
+
+  int next = 0;  // the next input row to bring into the ring
+  auto input_row = [&](int j) {
+    tonemap_row(src.data.data() + std::size_t(j) * w * src.channels, src.channels, w, exposure_scale, tm,
+                W.r.data(), W.g.data(), W.b.data());
+    // FLIP 2020: linear RGB -> XYZ -> YCxCz (opponent space, relative to the reference white).
+    rgb_to_ycxcz(W.r.data(), W.g.data(), W.b.data(), cm.to_rel_xyz, std::size_t(w), W.yc.data(), W.cx.data(),
+                 W.cz.data(), W.ylum.data());
+    const float* in[kRowSignals] = {W.yc.data(), W.cx.data(), W.cz.data(), W.cz.data(),
+                                    W.ylum.data(), W.ylum.data(), W.ylum.data()};
+    for (int s = 0; s < kRowSignals; ++s)
+      filter_row(in[s], plane(s) + std::size_t(j % ring_rows) * w, w, *rows[s], W.pad, W.taps);
+  };
+  for (int y = 0; y < h; ++y) {
+    while (next <= std::min(h - 1, y + R)) input_row(next++);
+    const std::size_t o = std::size_t(y) * w;
+    // Colour pipeline: the CSFs' vertical halves, then back to RGB and on to Hunt-adjusted L*a*b*.
+    filter_column(plane(kRowA), ring_rows, y, h, w, K.a, W.c_yc.data(), W.taps);
+    filter_column(plane(kRowRG), ring_rows, y, h, w, K.rg, W.c_cx.data(), W.taps);
+    filter_column(plane(kRowBY1), ring_rows, y, h, w, K.by1, W.c_cz1.data(), W.taps);
+    filter_column(plane(kRowBY2), ring_rows, y, h, w, K.by2, W.c_cz2.data(), W.taps);
+    filtered_ycxcz_to_hunt_lab(W.c_yc.data(), W.c_cx.data(), W.c_cz1.data(), W.c_cz2.data(), K.by_w1, K.by_w2,
+                               cm.to_rel_xyz, cm.from_rel_xyz, std::size_t(w), P.L.data() + o, P.A.data() + o,
+                               P.B.data() + o);
+    // Feature pipeline: edge (first derivative) and point (second derivative) detectors on Y / Y_n.
+    filter_column(plane(kRowDG), ring_rows, y, h, w, K.g, W.ex.data(), W.taps);    // edge x: dg(x) g(y)
+    filter_column(plane(kRowG), ring_rows, y, h, w, K.dg, W.ey.data(), W.taps);    // edge y: g(x) dg(y)
+    filter_column(plane(kRowDDG), ring_rows, y, h, w, K.g, W.px.data(), W.taps);   // point x: ddg(x) g(y)
+    filter_column(plane(kRowG), ring_rows, y, h, w, K.ddg, W.py.data(), W.taps);   // point y: g(x) ddg(y)
+    magnitude(W.ex.data(), W.ey.data(), P.edge.data() + o, w);
+    magnitude(W.px.data(), W.py.data(), P.point.data() + o, w);
   }
-  // Colour pipeline, spatial filtering with the CSFs (separable Gaussians).
-  conv_rows(W.yc, W.t0, w, h, K.a, W.pad);
-  conv_cols(W.t0, W.yc, w, h, K.a);
-  conv_rows(W.cx, W.t0, w, h, K.rg, W.pad);
-  conv_cols(W.t0, W.cx, w, h, K.rg);
-  conv_rows(W.cz, W.t0, w, h, K.by1, W.pad);
-  conv_cols(W.t0, W.t1, w, h, K.by1);
-  conv_rows(W.cz, W.t0, w, h, K.by2, W.pad);
-  conv_cols(W.t0, W.t2, w, h, K.by2);
-  P.L.resize(n);
-  P.A.resize(n);
-  P.B.resize(n);
-  const Mat3& Mi = c.xyz2rgb;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double cz = double(K.by_w1) * W.t1[i] + double(K.by_w2) * W.t2[i];
-    // YCxCz -> XYZ -> linear RGB, clamped to the RGB cube.
-    const double y = (W.yc[i] + 16.0) / 116.0;
-    const double X = (y + W.cx[i] / 500.0) * c.white[0], Y = y * c.white[1], Z = (y - cz / 200.0) * c.white[2];
-    const double r = std::clamp(Mi[0] * X + Mi[1] * Y + Mi[2] * Z, 0.0, 1.0);
-    const double g = std::clamp(Mi[3] * X + Mi[4] * Y + Mi[5] * Z, 0.0, 1.0);
-    const double b = std::clamp(Mi[6] * X + Mi[7] * Y + Mi[8] * Z, 0.0, 1.0);
-    double lab[3];
-    hunt_lab(r, g, b, lab);
-    P.L[i] = float(lab[0]);
-    P.A[i] = float(lab[1]);
-    P.B[i] = float(lab[2]);
-  }
-  // Feature pipeline: edge (first derivative) and point (second derivative) detectors on Y / Y_n.
-  conv_rows(W.ylum, W.t0, w, h, K.dg, W.pad);
-  conv_rows(W.ylum, W.t1, w, h, K.ddg, W.pad);
-  conv_rows(W.ylum, W.t2, w, h, K.g, W.pad);
-  conv_cols(W.t0, W.t3, w, h, K.g);   // edge x
-  conv_cols(W.t2, W.t4, w, h, K.dg);  // edge y
-  P.edge.resize(n);
-  for (std::size_t i = 0; i < n; ++i) P.edge[i] = std::sqrt(W.t3[i] * W.t3[i] + W.t4[i] * W.t4[i]);
-  conv_cols(W.t1, W.t3, w, h, K.g);    // point x
-  conv_cols(W.t2, W.t4, w, h, K.ddg);  // point y
-  P.point.resize(n);
-  for (std::size_t i = 0; i < n; ++i) P.point[i] = std::sqrt(W.t3[i] * W.t3[i] + W.t4[i] * W.t4[i]);
 }
 
 // FLIP 2020 final error: ΔE_c^(1 - ΔE_f). Writes into out (or keeps the maximum when take_max).
+// In single precision, as FLIP's own code; the two powers of a block of pixels go through
+// metrics/vector_math.h (they were the largest cost of this function).
 void combine(const Prepared& t, const Prepared& r, float* out, bool take_max) {
-  const double cmax = flip_cmax();
-  const double pccmax = kPc * cmax;
+  const float cmax = float(flip_cmax());
+  const float pccmax = float(kPc) * cmax;
+  const float below = float(kPt) / pccmax, above = float(1.0 - kPt) / (cmax - pccmax);
+  const float inv_sqrt2 = float(1.0 / std::sqrt(2.0));
   const std::size_t n = t.L.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    // Colour: redistribute HyAB^q_c to [0, 1] (p_t at p_c c_max).
-    const double dL = double(t.L[i]) - r.L[i], da = double(t.A[i]) - r.A[i], db = double(t.B[i]) - r.B[i];
-    const double hy = std::abs(dL) + std::sqrt(da * da + db * db);  // HyAB
-    if (hy == 0.0 && t.edge[i] == r.edge[i] && t.point[i] == r.point[i]) {  // 0^(1 - 0) = 0
-      if (!take_max) out[i] = 0.0f;
-      continue;
+  constexpr std::size_t kBlock = 1024;
+  std::vector<float> e(kBlock), q(kBlock, float(kQc)), v(kBlock);
+  for (std::size_t b0 = 0; b0 < n; b0 += kBlock) {
+    const std::size_t m = std::min(kBlock, n - b0);
+    // Colour: HyAB, then HyAB^q_c.
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = b0 + k;
+      const float dL = t.L[i] - r.L[i], da = t.A[i] - r.A[i], db = t.B[i] - r.B[i];
+      e[k] = std::abs(dL) + std::sqrt(da * da + db * db);
     }
-    const double e = std::pow(hy, kQc);
-    double dEc = e < pccmax ? (kPt / pccmax) * e : kPt + (e - pccmax) / (cmax - pccmax) * (1.0 - kPt);
-    dEc = std::min(dEc, 1.0);  // c_max is the largest HyAB in the RGB cube; this only absorbs rounding
-    // Features: (max(|Δedge|, |Δpoint|) / sqrt 2)^q_f in [0, 1].
-    const double df = std::max(std::abs(double(t.edge[i]) - r.edge[i]), std::abs(double(t.point[i]) - r.point[i]));
-    static_assert(kQf == 0.5, "the sqrt implements q_f = 0.5");
-    const double dEf = std::sqrt(std::min(df / std::sqrt(2.0), 1.0));  // q_f = 0.5
-    const float v = float(std::pow(dEc, 1.0 - dEf));
-    if (!take_max) out[i] = v;
-    else if (v > out[i] || std::isnan(v)) out[i] = v;
+    pow_n(e.data(), q.data(), e.data(), m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = b0 + k;
+      // Redistribute HyAB^q_c to [0, 1] (p_t at p_c c_max); c_max is the largest HyAB in the RGB cube,
+      // the min only absorbs rounding.
+      const float dEc = std::min(e[k] < pccmax ? below * e[k] : float(kPt) + (e[k] - pccmax) * above, 1.0f);
+      // Features: (max(|Δedge|, |Δpoint|) / sqrt 2)^q_f in [0, 1].
+      const float df = std::max(std::abs(t.edge[i] - r.edge[i]), std::abs(t.point[i] - r.point[i]));
+      static_assert(kQf == 0.5, "the sqrt implements q_f = 0.5");
+      const float dEf = std::sqrt(std::min(df * inv_sqrt2, 1.0f));  // q_f = 0.5
+      e[k] = dEc;
+      v[k] = 1.0f - dEf;
+    }
+    pow_n(e.data(), v.data(), v.data(), m);  // ΔE_c^(1 - ΔE_f); 0^(1 - 0) = 0, as where nothing differs
+    float* o = out + b0;
+    for (std::size_t k = 0; k < m; ++k) {
+      if (!take_max) o[k] = v[k];
+      else if (v[k] > o[k] || std::isnan(v[k])) o[k] = v[k];
+    }
   }
 }
 
@@ -499,10 +611,7 @@ HdrFlipReference::HdrFlipReference(const Image& ref_xyz, double ppd, const HdrFl
 }
 
 Image HdrFlipReference::map(const Image& test_xyz) const {
-  if (test_xyz.width != width_ || test_xyz.height != height_)
-    throw std::invalid_argument("HdrFlipReference::map: the test image is " + std::to_string(test_xyz.width) + "x" +
-                                std::to_string(test_xyz.height) + " but the reference " + std::to_string(width_) +
-                                "x" + std::to_string(height_));
+  require_reference_size(test_xyz, width_, height_, "HdrFlipReference::map");
   Image out(width_, height_, 1, 0.0f);
   if (out.pixel_count() == 0) return out;
   const State& st = *state_;

@@ -26,8 +26,11 @@ FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear) const {
   r.xyz = cm_.to_xyz_d65(ref_linear, space_);
   r.metric_xyz = options_.display_view.empty() ? r.xyz : metric_xyz(cm_, ref_linear, space_, options_);
   r.flicker = flicker_reference(r.xyz);
-  if (options_.flip_hdr && std::find(per_pixel_.begin(), per_pixel_.end(), "flip") != per_pixel_.end())
-    r.flip.emplace(r.metric_xyz, options_.flip_ppd);
+  // The reference side of the per-pixel metrics that have one, converted once for every variant.
+  auto measured = [&](const char* m) { return std::find(per_pixel_.begin(), per_pixel_.end(), m) != per_pixel_.end(); };
+  if (options_.flip_hdr && measured("flip")) r.flip.emplace(r.metric_xyz, options_.flip_ppd);
+  if (measured("deltaE2000")) r.lab = lab_image(r.metric_xyz);
+  if (measured("deltaEITP")) r.ictcp = ictcp_image(r.metric_xyz, options_.itp_luminance_nits);
   return r;
 }
 
@@ -68,8 +71,12 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
   for (const auto& name : per_pixel_)
     timed(name, [&] {
       double mean = nan, max = nan;
-      if (name == "flip" && ref.flip) {
-        map_mean_max(ref.flip->map(test_metric), &mean, &max);  // the reference side is shared
+      if (name == "flip" && ref.flip) {  // the reference side is shared
+        map_mean_max(ref.flip->map(test_metric), &mean, &max);
+      } else if (name == "deltaE2000" && ref.lab) {
+        map_mean_max(ciede2000_map(test_metric, *ref.lab), &mean, &max);
+      } else if (name == "deltaEITP" && ref.ictcp) {
+        map_mean_max(delta_e_itp_map(test_metric, *ref.ictcp), &mean, &max);
       } else {
         MetricResult r = evaluate_metric(name, test_metric, ref.metric_xyz, options_);
         mean = r.mean;

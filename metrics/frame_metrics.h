@@ -16,6 +16,8 @@
 
 #include "core/util/image.h"
 #include "metrics/color/color_manager.h"
+#include "metrics/ciede2000.h"
+#include "metrics/delta_e_itp.h"
 #include "metrics/flicker.h"
 #include "metrics/flip.h"
 #include "metrics/metric_registry.h"
@@ -42,6 +44,8 @@ class FrameMetrics {
     Image metric_xyz;  // what per-pixel metrics compare (display-referred when a view is set)
     FlickerReference flicker;               // the flicker metric's view of it
     std::optional<HdrFlipReference> flip;   // HDR-FLIP's per-exposure state, when FLIP is measured
+    std::optional<LabImage> lab;            // L*a*b* of metric_xyz, when ΔE00 is measured
+    std::optional<ICtCpImage> ictcp;        // ICtCp of metric_xyz, when ΔE_ITP is measured
   };
   Reference prepare(const Image& ref_linear) const;
 

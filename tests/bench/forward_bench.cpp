@@ -232,8 +232,16 @@ int main(int argc, char** argv) {
     core::FrameResult f = r.render(in.uniforms, in.samples);
     const Image& test = f.images.at("color");
     const Image& motion = f.images.at("motion");
+    // The reference: the same frame with 2x2 samples, so that every pixel metric has differences to
+    // measure (against the test frame itself FLIP and the colour metrics would skip most of the work).
+    const core::FrameInputs ref_in =
+        inputs(spec, data, w, h, {glm::vec2(-0.25f, -0.25f), glm::vec2(0.25f, -0.25f), glm::vec2(-0.25f, 0.25f),
+                                  glm::vec2(0.25f, 0.25f)});
+    const Image ref_linear = r.render(ref_in.uniforms, ref_in.samples).images.at("color");
     metrics::FrameMetrics fm(cm, spec.working_space, spec.metrics, spec.metric_options);
-    const auto ref = fm.prepare(test);
+    const auto ref = fm.prepare(ref_linear);
+    std::printf("\nHDR-FLIP exposures of the reference: %d, from %.3f to %.3f stops\n", ref.flip ? ref.flip->exposures().count : 0,
+                ref.flip ? ref.flip->exposures().start : 0.0, ref.flip ? ref.flip->exposures().stop : 0.0);
     metrics::FlickerTracker tracker;
     std::map<std::string, std::vector<double>> cost;
     std::vector<double> total;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -99,6 +100,38 @@ TEST(Ciede2000, XyzToLabKnownValues) {
   EXPECT_NEAR(red.L, 53.24, 0.01);
   EXPECT_NEAR(red.a, 80.09, 0.01);
   EXPECT_NEAR(red.b, 67.20, 0.01);
+}
+
+TEST(Ciede2000, FastCubeRootWithinFourUlpOfLibm) {
+  // Every octave from 2^-8 to 2^60 at 4099 mantissas each, and the companding's edges.
+  double worst_ulp = 0.0;
+  for (int e = -8; e <= 60; ++e)
+    for (int k = 0; k <= 4098; ++k) {
+      const double t = std::ldexp(1.0 + k / 4099.0, e);
+      const double want = std::cbrt(t), got = cbrt_positive(t);
+      worst_ulp = std::max(worst_ulp, std::abs(got - want) / (std::nextafter(want, 2.0 * want) - want));
+    }
+  EXPECT_LE(worst_ulp, 4.0);
+  // Single precision (FLIP's colour pipeline): within 3 ulp of std::cbrt(float) on the same octaves.
+  double worst_ulp_f = 0.0;
+  for (int e = -8; e <= 60; ++e)
+    for (int k = 0; k <= 4098; ++k) {
+      const float t = std::ldexp(1.0f + k / 4099.0f, e);
+      const float want = std::cbrt(t), got = cbrt_positive(t);
+      worst_ulp_f = std::max(worst_ulp_f, double(std::abs(got - want) / (std::nextafter(want, 2.0f * want) - want)));
+    }
+  EXPECT_LE(worst_ulp_f, 3.0);
+  EXPECT_NEAR(lab_f(8.0f), 2.0f, 4e-7f);
+  EXPECT_TRUE(std::isnan(lab_f(std::nanf(""))));
+  EXPECT_EQ(cbrt_positive(8.0), 2.0);
+  EXPECT_EQ(cbrt_positive(27.0), 3.0);
+  EXPECT_TRUE(std::isnan(lab_f(std::nan(""))));
+  EXPECT_EQ(lab_f(std::numeric_limits<double>::infinity()), std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(lab_f(-1.0), -1.0 / (3.0 * (6.0 / 29.0) * (6.0 / 29.0)) + 4.0 / 29.0, 1e-15);  // linear, no cbrt
+  // Continuous at the branch point (6/29)^3, where both branches give 6/29.
+  const double knee = std::pow(6.0 / 29.0, 3);
+  EXPECT_NEAR(lab_f(std::nextafter(knee, 1.0)), 6.0 / 29.0, 1e-14);
+  EXPECT_NEAR(lab_f(knee), 6.0 / 29.0, 1e-14);
 }
 
 TEST(Ciede2000, MapMatchesScalarAndChecksSize) {
