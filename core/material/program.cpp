@@ -4,6 +4,8 @@
 #include "core/vk/shader_compiler.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 
 namespace glintlab::core {
@@ -39,7 +41,20 @@ MaterialProgram sand_program(const SandParams& params, const SandFeatures& needs
   SandParamsGPU gpu = shaded.pack();
   p.block.resize(sizeof gpu);
   std::memcpy(p.block.data(), &gpu, sizeof gpu);
+  p.defines.push_back(material_constants_define(p.block));
   return p;
+}
+
+std::string material_constants_define(const std::vector<std::byte>& block) {
+  std::string words = "SAND_PARAMS_WORDS=";
+  for (std::size_t i = 0; i + 4 <= block.size(); i += 4) {
+    std::uint32_t u;
+    std::memcpy(&u, block.data() + i, 4);
+    char w[16];
+    std::snprintf(w, sizeof w, "%s0x%08xu", i ? "," : "", unsigned(u));
+    words += w;
+  }
+  return words;
 }
 
 MaterialProgram geometry_only_program() {
