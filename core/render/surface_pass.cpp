@@ -199,7 +199,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
                                              opt_.single_sample ? Draw::ShadeOpaque : Draw::Shade, opt_.motion);
   if (opt_.sky) {
     std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0")};
-    CompiledShader svs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
+    CompiledShader svs = sc.compile("passes/sky.vert", ShaderStage::Vertex);
     CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment, sky_defines);
     ShaderModule svm = make_shader_module(ctx, svs.spirv), sfm = make_shader_module(ctx, sfs.spirv);
     sky_pipeline_ =

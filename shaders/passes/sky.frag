@@ -6,18 +6,15 @@ layout(set = 0, binding = 2) uniform sampler2D env_map;
 #include "common/environment.glsl"
 #include "common/motion.glsl"
 
-layout(location = 0) in vec2 v_ndc;
+layout(location = 0) in vec3 v_ray;  // unnormalised view ray (passes/sky.vert)
 layout(location = 0) out vec4 out_color;
 #if SURFACE_MOTION
 layout(location = 1) out vec4 out_motion;  // camera rotation only (common/motion.glsl)
 #endif
 
 void main() {
-  vec4 far_point = frame_inv_view_proj * vec4(v_ndc, 1.0, 1.0);
-  vec4 near_point = frame_inv_view_proj * vec4(v_ndc, 0.0, 1.0);
-  vec3 d = far_point.xyz / far_point.w - near_point.xyz / near_point.w;
-  float len = length(d);
-  vec3 dir = len > 0.0 ? d / len : vec3(0.0, 1.0, 0.0);
+  float len = length(v_ray);
+  vec3 dir = len > 0.0 ? v_ray / len : vec3(0.0, 1.0, 0.0);
   vec3 L = max(env_radiance(dir, 0.0), vec3(0.0));
   float w = sample_jitter_weight.z;
   out_color = vec4(L * w, 0.0);

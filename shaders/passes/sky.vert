@@ -1,0 +1,16 @@
+#version 450
+// One triangle covering the screen at the far plane (depth 1), with the world-space view ray of each
+// corner: for a perspective (or orthographic) camera the ray far_point - near_point is an affine
+// function of NDC xy (the inverse view-projection's w row does not depend on x and y), so the
+// rasteriser's interpolation gives every pixel its ray, and the fragment stage does no matrix work.
+#include "common/frame.glsl"
+
+layout(location = 0) out vec3 v_ray;
+
+void main() {
+  const vec2 ndc = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2) * 2.0 - 1.0;
+  const vec4 far_point = frame_inv_view_proj * vec4(ndc, 1.0, 1.0);
+  const vec4 near_point = frame_inv_view_proj * vec4(ndc, 0.0, 1.0);
+  v_ray = far_point.xyz / far_point.w - near_point.xyz / near_point.w;
+  gl_Position = vec4(ndc, 1.0, 1.0);
+}
