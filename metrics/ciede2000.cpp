@@ -31,7 +31,7 @@ Lab xyz_to_lab(double X, double Y, double Z) {
 
 double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double kH) {
   // Sharma et al. 2005, step 1: C'_i, h'_i with a'_i = (1 + G) a_i.
-  // (Chromas as sqrt(a^2 + b^2): L*a*b* values are far from overflow, and hypot costs 4x as much.)
+  // (Chromas as sqrt(a^2 + b^2): L*a*b* values are far from overflow, and hypot is slower.)
   const double C1ab = std::sqrt(lab1.a * lab1.a + lab1.b * lab1.b), C2ab = std::sqrt(lab2.a * lab2.a + lab2.b * lab2.b);
   const double Cab_bar = 0.5 * (C1ab + C2ab);
   const double Cab2 = Cab_bar * Cab_bar, Cab7 = Cab2 * Cab2 * Cab2 * Cab_bar;
@@ -60,7 +60,7 @@ double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double 
     else hp_bar = 0.5 * (h1p + h2p - 360.0);
   }
   // T = 1 - 0.17 cos(h - 30°) + 0.24 cos 2h + 0.32 cos(3h + 6°) - 0.20 cos(4h - 63°), from one cos/sin
-  // pair through the multiple-angle and angle-sum identities (four cosines cost more than the ΔE itself).
+  // pair through the multiple-angle and angle-sum identities instead of four calls of cos.
   const double c1 = std::cos(hp_bar * kDeg), s1 = std::sin(hp_bar * kDeg);
   const double c2 = 2.0 * c1 * c1 - 1.0, s2 = 2.0 * s1 * c1;
   const double c3 = c1 * (2.0 * c2 - 1.0), s3 = s1 * (2.0 * c2 + 1.0);  // 4c^3 - 3c, 3s - 4s^3

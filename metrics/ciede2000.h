@@ -27,8 +27,8 @@ constexpr double kLabWhiteZ = 1.08883;
 // Cube root of a finite t > 0 within 4 ulp of std::cbrt (tests/metrics/ciede2000.cpp checks it over
 // 2^-8 ... 2^60): a first guess from the exponent divided by 3 in the bit pattern (about 3 % off),
 // then three steps of Halley's iteration y <- y (y^3 + 2t) / (2y^3 + t), each cubing the relative
-// error. Inlined and branch-free it costs a third of glibc's cbrt, which was the largest single entry
-// of the metrics' profile (every FLIP exposure takes three per pixel).
+// error. Inlined it took 7.0 ns where glibc's cbrt took 12.9 ns (a loop over 4M values), and cbrt was
+// the largest single entry of the metrics' profile (every FLIP exposure takes three per pixel).
 inline double cbrt_positive(double t) {
   std::uint64_t bits;
   std::memcpy(&bits, &t, sizeof bits);

@@ -33,7 +33,7 @@ Mat3 rgb_to_xyz_npm(double xr, double yr, double xg, double yg, double xb, doubl
 // Inputs <= 0 or NaN give the code value of 0 cd/m^2 (c1^m2 ≈ 7.3e-7); +inf is treated as 1e30 cd/m^2.
 double pq_inverse_eotf(double luminance_nits);
 // The same for n values (the scalar function is this with n = 1: identical results). In-place allowed.
-// Through metrics/vector_math.h, about three times the throughput of a loop over std::pow.
+// Through metrics/vector_math.h (its powers cost about a third of std::pow's).
 void pq_inverse_eotf_n(const double* luminance_nits, double* out, std::size_t n);
 // SMPTE ST 2084 EOTF: PQ code value in [0, 1] -> cd/m^2.
 double pq_eotf(double code_value);

@@ -1,10 +1,11 @@
-// Element-wise log2, exp2 and powers over arrays of doubles, for the per-pixel loops whose time is
-// mostly transcendental functions (the PQ curve of ΔE_ITP and of the flicker metric). On x86-64 they
-// go through glibc's vector math library, libmvec (exp2 and log2 since glibc 2.35): two doubles per
-// call in SSE registers, which every x86-64 CPU has, and glibc picks its SSE4 code where the CPU has
-// SSE4.1; about three times the throughput of the scalar functions. Accuracy: libmvec's documented
-// bound of 4 ulp per function (tests/metrics/vector_math.cpp compares them with <cmath>). Elsewhere
-// they are loops over <cmath>.
+// Element-wise log2, exp2 and powers over arrays of doubles and floats, for the per-pixel loops whose
+// time is mostly transcendental functions (the PQ curve of ΔE_ITP and of the flicker metric, FLIP's
+// powers). On x86-64 they go through glibc's vector math library, libmvec (exp2 and log2 since glibc
+// 2.35): two doubles or four floats per call in SSE registers, which every x86-64 CPU has; glibc picks
+// its SSE4 code where the CPU has SSE4.1. Measured on the development machine (loops over 4M doubles):
+// log2 3.8 ns instead of 5.8, exp2 2.0 ns instead of 4.7, so a power as exp2(p log2 x) about 5.8 ns
+// against std::pow's 16.3. Accuracy: libmvec's documented bound of 4 ulp per function
+// (tests/metrics/vector_math.cpp compares them with <cmath>). Elsewhere they are loops over <cmath>.
 #pragma once
 
 #include <cstddef>

@@ -10,7 +10,8 @@
 //   2. The reference: ms per sample of a grid x grid reference frame against a
 //      1-spp frame's, and a geometry-bound case (a small image, many samples).
 //   3. The TAA resolve against the surface pass of the same frame.
-//   4. Every per-frame metric of one 640x360 variant frame: ms per metric.
+//   4. Every per-frame metric of one 640x360 variant frame against a 2x2-sample
+//      render of the same frame (its reference): ms per metric.
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
 // Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--only surface|reference|taa|metrics]
