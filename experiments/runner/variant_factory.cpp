@@ -12,6 +12,10 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
   r.graph = std::make_unique<core::FrameGraph>(ctx, width, height);
   core::SurfacePassOptions o;
   o.program = program;
+  // One sample per frame (no AA, TAA, a 1x1 SSAA grid): one opaque draw with
+  // depth test LESS instead of a depth pre-pass and an EQUAL shading pass, the
+  // same nearest surface (core/render/surface_pass.h).
+  o.single_sample = v.samples_per_pixel() == 1;
   switch (v.aa) {
     case AaMethod::None:
     case AaMethod::Ssaa:  // one geometry pass per sample: a jittered stratified pattern (finer than an ordered grid)

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 using namespace glintlab;
 
@@ -273,4 +274,55 @@ TEST(Renderer, SupersampledPassEqualsOnePassPerSample) {
   // A silhouette pixel differs when one of its nine samples is snapped to the
   // other side of an edge: a few per cent of the covered pixels at most.
   EXPECT_LT(differing, covered / 50) << differing << " of " << covered << " covered pixels differ";
+}
+
+TEST(Renderer, OneOpaqueSampleWithSkyRewritesEveryPixelWithoutAClear) {
+  // With one opaque sample and the sky on, the pass skips clearing colour and
+  // motion: every pixel must be written by the nearest surface or the sky. A
+  // frame that looks straight down (surface everywhere) and then one towards
+  // the horizon (sky above it) must give exactly what a fresh pass gives for
+  // the second frame: a pixel neither wrote would keep the first frame's value.
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const int w = 96, h = 64;
+  core::Mesh mesh = big_plane();
+  core::SceneGpu scene(ctx, mesh, constant_env(2.5f));
+  core::SurfacePassOptions o;
+  o.program.fragment = "tests/position.frag";
+  o.single_sample = true;
+  o.motion = true;
+  ASSERT_TRUE(o.sky);
+  auto frame = [&](glm::vec3 eye, glm::vec3 target) {
+    core::CameraState cam;
+    cam.position = eye;
+    cam.target = target;
+    cam.fov_y_deg = 50.0f;
+    glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
+    return std::make_pair(uniforms_for(vp, w, h, eye), core::SamplePush{vp, {0, 0, 1, 0}});
+  };
+  const auto down = frame({0.0f, 5.0f, 0.01f}, {0.0f, 0.0f, 0.0f});
+  const auto horizon = frame({0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, -10.0f});
+  auto coverage = [&](const core::FrameResult& r) {
+    int surface = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) surface += color(r).at(x, y, 3) == 1.0f;
+    return surface;
+  };
+
+  core::SurfaceRenderer reused(ctx, scene, w, h, o);
+  ASSERT_EQ(coverage(reused.render(down.first, {down.second})), w * h) << "the first frame must be all surface";
+  const core::FrameResult second = reused.render(horizon.first, {horizon.second});
+  core::SurfaceRenderer fresh(ctx, scene, w, h, o);
+  const core::FrameResult expected = fresh.render(horizon.first, {horizon.second});
+  const int surface = coverage(expected);
+  EXPECT_GT(surface, w * h / 4);
+  EXPECT_LT(surface, w * h * 3 / 4) << "the second frame must show sky too";
+  for (const char* target : {"color", "motion"}) {
+    const Image& a = second.images.at(target);
+    const Image& b = expected.images.at(target);
+    ASSERT_EQ(a.data.size(), b.data.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < a.data.size(); ++i) differing += std::memcmp(&a.data[i], &b.data[i], sizeof(float)) != 0;
+    EXPECT_EQ(differing, 0u) << target << ": values left from the previous frame";
+  }
 }
