@@ -8,10 +8,7 @@ namespace glintlab::core {
 
 namespace {
 
-bool is_depth(VkFormat f) {
-  return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D16_UNORM ||
-         f == VK_FORMAT_D32_SFLOAT_S8_UINT;
-}
+bool is_depth(VkFormat f) { return (aspects_of(f) & VK_IMAGE_ASPECT_DEPTH_BIT) != 0; }
 
 // Where an image must be (layout) and what touches it (stages, accesses) for
 // one use inside a pass.
@@ -199,9 +196,8 @@ void FrameGraph::build(const std::vector<std::string>& readback) {
   }
   g.readback = readback;
   for (auto& [name, t] : g.targets) {
-    const VkImageAspectFlags aspect = is_depth(t.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
     for (int s = 0; s < (t.history ? 2 : 1); ++s)
-      t.img[s] = Image2D(g.ctx, uint32_t(g.w), uint32_t(g.h), t.format, t.usage, 1, aspect);
+      t.img[s] = Image2D(g.ctx, uint32_t(g.w), uint32_t(g.h), t.format, t.usage, 1, aspects_of(t.format));
     if (t.readback) t.staging = make_readback_buffer(g.ctx, t.img[0]);
   }
   if (g.ctx.timestamps_supported() && !g.passes.empty()) {

@@ -10,7 +10,10 @@ namespace glintlab::core {
 namespace {
 
 constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;  // one opaque sample: depth decides alone
+// Accumulated samples: depth, and a stencil that lets one fragment per pixel
+// through the EQUAL shading draw (see Draw).
+constexpr VkFormat kDepthStencilFormat = VK_FORMAT_D32_SFLOAT_S8_UINT;
 
 VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShaderModule m) {
   VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -23,9 +26,14 @@ VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShader
 // The three draws of one sample. Accumulating samples by additive blending is
 // only correct if each pixel receives exactly one fragment per sample, so the
 // surface is first drawn depth-only, then shaded with depth test EQUAL (only
-// the nearest fragment survives, whatever the draw order), then the sky fills
-// what is still at the far plane. With one sample per frame the surface is one
-// opaque draw (depth test LESS) and the sky writes, not adds, its colour.
+// the nearest depth survives, whatever the draw order), then the sky fills
+// what is still at the far plane. Fragments of different triangles can tie at
+// exactly the nearest depth (coincident surfaces; at a fold seen edge-on, two
+// triangles round to the same depth): the shading draw and the sky also test
+// the stencil EQUAL 0 and increment it, so the first of them is added and the
+// rest are not. With one sample per frame the surface is one opaque draw
+// (depth test LESS: the first of equal fragments stays) and the sky writes,
+// not adds, its colour.
 enum class Draw { DepthPrepass, Shade, Sky, ShadeOpaque, SkyOpaque };
 
 Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
@@ -70,6 +78,17 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   ds.depthCompareOp = writes_depth         ? VK_COMPARE_OP_LESS
                       : draw == Draw::Shade ? VK_COMPARE_OP_EQUAL
                                             : VK_COMPARE_OP_LESS_OR_EQUAL;
+  if (draw == Draw::Shade || draw == Draw::Sky) {  // accumulating: one fragment per pixel and sample
+    ds.stencilTestEnable = VK_TRUE;
+    ds.front.failOp = VK_STENCIL_OP_KEEP;
+    ds.front.passOp = VK_STENCIL_OP_INCREMENT_AND_CLAMP;
+    ds.front.depthFailOp = VK_STENCIL_OP_KEEP;
+    ds.front.compareOp = VK_COMPARE_OP_EQUAL;
+    ds.front.compareMask = 0xff;
+    ds.front.writeMask = 0xff;
+    ds.front.reference = 0;
+    ds.back = ds.front;
+  }
   VkPipelineColorBlendAttachmentState blend[2] = {};
   // Accumulate weighted samples; one opaque sample (and its sky) overwrites what a farther fragment wrote.
   blend[0].blendEnable = draw == Draw::Shade || draw == Draw::Sky ? VK_TRUE : VK_FALSE;
@@ -107,7 +126,7 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
 // across one render-pass instance per sample; the pass clears them itself in
 // the first instance. The frame graph puts every attachment in its attachment
 // layout before the pass and expects it there after.
-RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, bool motion) {
+RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, VkFormat depth_format, bool motion) {
   std::vector<VkAttachmentDescription> att;
   auto colour = [](VkFormat f) {
     VkAttachmentDescription a{};
@@ -123,11 +142,12 @@ RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, bool mo
   att.push_back(colour(color_format));
   if (motion) att.push_back(colour(kMotionFormat));
   VkAttachmentDescription depth{};
-  depth.format = kDepthFormat;
+  depth.format = depth_format;
   depth.samples = VK_SAMPLE_COUNT_1_BIT;
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  depth.stencilLoadOp = (aspects_of(depth_format) & VK_IMAGE_ASPECT_STENCIL_BIT) ? VK_ATTACHMENT_LOAD_OP_CLEAR
+                                                                               : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
   depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   depth.initialLayout = depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
   att.push_back(depth);
@@ -177,7 +197,10 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   if (opt_.motion && !ctx.independent_blend())
     throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
                       "colour need");
-  render_pass_ = make_render_pass(ctx, opt_.color_format, opt_.motion);
+  depth_format_ = opt_.single_sample ? kDepthFormat : kDepthStencilFormat;
+  if (!ctx.format_supports(depth_format_, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+    throw VulkanError(ctx.info().name + " cannot render to D32_SFLOAT_S8_UINT, which accumulating samples needs");
+  render_pass_ = make_render_pass(ctx, opt_.color_format, depth_format_, opt_.motion);
 
   std::vector<VkDescriptorSetLayoutBinding> bindings = {
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
@@ -246,7 +269,7 @@ void SurfacePass::declare(PassIO& io) const {
   // The pass clears colour and motion itself, so their old contents are dropped.
   io.write(opt_.color_target, opt_.color_format, TargetUse::ColorAttachment);
   if (opt_.motion) io.write(opt_.motion_target, kMotionFormat, TargetUse::ColorAttachment);
-  io.write(opt_.depth_target, kDepthFormat, TargetUse::DepthAttachment);
+  io.write(opt_.depth_target, depth_format_, TargetUse::DepthAttachment);
 }
 
 void SurfacePass::setup(const TargetSet& t) {
@@ -258,8 +281,8 @@ void SurfacePass::setup(const TargetSet& t) {
     const uint32_t hw = uint32_t(width_ * f), hh = uint32_t(height_ * f);
     hi_color_ = Image2D(ctx_, hw, hh, opt_.color_format,
                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-    hi_depth_ = Image2D(ctx_, hw, hh, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, 1,
-                        VK_IMAGE_ASPECT_DEPTH_BIT);
+    hi_depth_ = Image2D(ctx_, hw, hh, depth_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, 1,
+                        aspects_of(depth_format_));
     views = {hi_color_.view(), hi_depth_.view()};
     write_image_descriptor(ctx_, down_set_.set, 0, hi_color_.view(), down_sampler_.get(),
                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

@@ -11,7 +11,8 @@
 // With option `motion` it also writes the "motion" target (RGBA32F, layout in
 // shaders/common/motion.glsl: motion vector in pixels, distance now, distance
 // in the previous frame) from the last sample's nearest surface, and the
-// "depth" target (D32) is the last sample's depth buffer.
+// "depth" target (D32, or D32S8 when samples accumulate) is the last sample's
+// depth buffer.
 //
 // With option `supersample` = f > 1 (the reference's many samples) it renders
 // at f times the resolution and box-filters into "color": f^2 samples per
@@ -75,6 +76,7 @@ class SurfacePass final : public Pass {
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;
   Pipeline depth_pipeline_, surface_pipeline_, sky_pipeline_;
+  VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;  // with a stencil when samples accumulate
   Buffer frame_ubo_, material_ubo_;
   DescriptorSet descriptors_;
   int width_ = 0, height_ = 0;

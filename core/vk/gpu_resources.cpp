@@ -35,6 +35,16 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
 }
 
 // ---------------------------------------------------------------- Image2D
+VkImageAspectFlags aspects_of(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_D32_SFLOAT: return VK_IMAGE_ASPECT_DEPTH_BIT;
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default: return VK_IMAGE_ASPECT_COLOR_BIT;
+  }
+}
+
 Image2D::Image2D(const VkContext& ctx, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
                  uint32_t mip_levels, VkImageAspectFlags aspect)
     : format_(format), width_(width), height_(height), mips_(mip_levels), aspect_(aspect), usage_(usage) {

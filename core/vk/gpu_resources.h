@@ -31,6 +31,10 @@ class Buffer {
   void* mapped_ = nullptr;  // unmapped implicitly when the memory is freed
 };
 
+// The aspects of a format: colour, depth, or depth and stencil (views and
+// barriers of a combined depth/stencil image must name both).
+VkImageAspectFlags aspects_of(VkFormat format);
+
 // A 2D optimal-tiling image in device-local memory with one view over all
 // mips (none for transfer-only images).
 class Image2D {

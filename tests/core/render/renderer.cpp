@@ -56,6 +56,27 @@ core::SurfacePassOptions surface_options(const std::string& fragment) {
 
 const Image& color(const core::FrameResult& r) { return r.images.at("color"); }
 
+// Two concentric sphere shells (radius 1 and 1 - spacing) and a camera that
+// sees the outer one whole: four surfaces behind most pixels, or two
+// coincident ones with spacing 0.
+core::Mesh layered_sphere(int tessellation, float spacing) {
+  core::MeshSpec spec;
+  spec.type = "sphere";
+  spec.size = 2.0f;  // radius 1
+  spec.tessellation = tessellation;
+  spec.layers = 2;
+  spec.layer_spacing = spacing;
+  return core::build_mesh(spec);
+}
+
+core::CameraState sphere_camera() {
+  core::CameraState cam;
+  cam.position = {0.4f, 0.9f, 3.2f};
+  cam.target = {0.0f, 0.0f, 0.0f};
+  cam.fov_y_deg = 50.0f;
+  return cam;
+}
+
 }  // namespace
 
 TEST(Renderer, ReadbackOfOddSizeIsExact) {
@@ -172,19 +193,10 @@ TEST(Renderer, OnlyTheNearestOfOverlappingSurfacesIsAccumulated) {
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const int w = 96, h = 64;
-  core::MeshSpec spec;
-  spec.type = "sphere";
-  spec.size = 2.0f;  // radius 1
-  spec.tessellation = 192;
-  spec.layers = 2;
-  spec.layer_spacing = 0.3f;  // inner shell radius 0.7
-  core::Mesh mesh = core::build_mesh(spec);
+  core::Mesh mesh = layered_sphere(192, 0.3f);  // inner shell radius 0.7
   core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
   core::SurfaceRenderer pass(ctx, scene, w, h, surface_options("tests/analytic.frag"));
-  core::CameraState cam;
-  cam.position = {0.4f, 0.9f, 3.2f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.fov_y_deg = 50.0f;
+  const core::CameraState cam = sphere_camera();
   glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
   glm::dmat4 inv = glm::inverse(glm::dmat4(vp));
   for (int n : {1, 3}) {
@@ -228,18 +240,9 @@ TEST(Renderer, SupersampledPassEqualsOnePassPerSample) {
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const int w = 96, h = 64, f = 3;
-  core::MeshSpec spec;
-  spec.type = "sphere";
-  spec.size = 2.0f;
-  spec.tessellation = 192;
-  spec.layers = 2;
-  spec.layer_spacing = 0.3f;
-  core::Mesh mesh = core::build_mesh(spec);
+  core::Mesh mesh = layered_sphere(192, 0.3f);
   core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  core::CameraState cam;
-  cam.position = {0.4f, 0.9f, 3.2f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.fov_y_deg = 50.0f;
+  const core::CameraState cam = sphere_camera();
   glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
   core::FrameUniforms uniforms = uniforms_for(vp, w, h, cam.position);
 
@@ -324,5 +327,48 @@ TEST(Renderer, OneOpaqueSampleWithSkyRewritesEveryPixelWithoutAClear) {
     size_t differing = 0;
     for (size_t i = 0; i < a.data.size(); ++i) differing += std::memcmp(&a.data[i], &b.data[i], sizeof(float)) != 0;
     EXPECT_EQ(differing, 0u) << target << ": values left from the previous frame";
+  }
+}
+
+TEST(Renderer, CoincidentSurfacesAccumulateOneFragmentPerSample) {
+  // Two identical shells (layer spacing 0): every covered pixel has two
+  // fragments at exactly the same depth. Depth test EQUAL alone would shade
+  // both and add them (alpha 2); each sample must add exactly one, in every
+  // accumulating mode (one pass per sample, supersampled) and with one opaque
+  // sample, with the sky on so that it must not add onto a surface either.
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const int w = 64, h = 48;
+  core::Mesh mesh = layered_sphere(64, 0.0f);
+  core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
+  const core::CameraState cam = sphere_camera();
+  glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
+  struct Mode {
+    const char* name;
+    int samples, supersample;
+    bool single;
+  };
+  for (Mode m : {Mode{"one opaque sample", 1, 1, true}, Mode{"one accumulated sample", 1, 1, false},
+                 Mode{"4 samples", 4, 1, false}, Mode{"supersampled 2x2", 1, 2, false}}) {
+    core::SurfacePassOptions o;
+    o.program.fragment = "tests/analytic.frag";
+    o.single_sample = m.single;
+    o.supersample = m.supersample;
+    core::SurfaceRenderer pass(ctx, scene, w, h, o);
+    std::vector<core::SamplePush> samples;
+    auto offs = m.samples == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(2, 5u);
+    for (size_t i = 0; i < offs.size(); ++i)
+      samples.push_back({core::projection(cam, w, h, offs[i]) * core::view_matrix(cam),
+                         {offs[i].x, offs[i].y, 1.0f / float(offs.size()), float(i)}});
+    auto out = pass.render(uniforms_for(vp, w, h, cam.position), samples);
+    int covered = 0, doubled = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float a = color(out).at(x, y, 3);
+        covered += a > 0.0f;
+        doubled += a > 1.0f + 1e-5f;
+      }
+    EXPECT_GT(covered, w * h / 8) << m.name;
+    EXPECT_EQ(doubled, 0) << m.name << ": pixels that accumulated both coincident fragments";
   }
 }
