@@ -12,10 +12,13 @@ namespace glintlab::core {
 
 std::string MaterialProgram::cache_key() const {
   ContentHash h;
-  h.add(std::string_view("material-program-v1"))
+  // v2: accumulating passes add one fragment per pixel and sample where
+  // surfaces tie at the nearest depth (before, each of them)
+  h.add(std::string_view("material-program-v2"))
       .add(default_shader_compiler().source_hash(fragment, ShaderStage::Fragment, defines));
   for (const auto& d : defines) h.add(std::string_view(d));
   h.add(block.data(), block.size());
+  h.add(std::string_view(frame_lighting_constants ? "frame-lighting-constants" : "frame-lighting-uniforms"));
   return h.hex();
 }
 
@@ -42,19 +45,12 @@ MaterialProgram sand_program(const SandParams& params, const SandFeatures& needs
   p.block.resize(sizeof gpu);
   std::memcpy(p.block.data(), &gpu, sizeof gpu);
   p.defines.push_back(material_constants_define(p.block));
+  p.frame_lighting_constants = true;
   return p;
 }
 
 std::string material_constants_define(const std::vector<std::byte>& block) {
-  std::string words = "SAND_PARAMS_WORDS=";
-  for (std::size_t i = 0; i + 4 <= block.size(); i += 4) {
-    std::uint32_t u;
-    std::memcpy(&u, block.data() + i, 4);
-    char w[16];
-    std::snprintf(w, sizeof w, "%s0x%08xu", i ? "," : "", unsigned(u));
-    words += w;
-  }
-  return words;
+  return words_define("SAND_PARAMS_WORDS", block.data(), block.size());
 }
 
 MaterialProgram geometry_only_program() {

@@ -3,7 +3,10 @@
 #include "core/scene/mesh.h"
 #include "core/vk/shader_compiler.h"
 
+#include <algorithm>
+#include <array>
 #include <cstring>
+#include <iterator>
 
 namespace glintlab::core {
 
@@ -215,13 +218,13 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   defines.push_back(std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0"));
   defines.push_back(std::string("COLOR_HALF=") + (opt_.color_format == VK_FORMAT_R16G16B16A16_SFLOAT ? "1" : "0"));
   CompiledShader vs = sc.compile("passes/surface.vert", ShaderStage::Vertex, defines);
-  CompiledShader fs = sc.compile(opt_.program.fragment, ShaderStage::Fragment, defines);
-  fragment_hash_ = fs.source_hash;
-  ShaderModule vsm = make_shader_module(ctx, vs.spirv), fsm = make_shader_module(ctx, fs.spirv);
-  depth_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), VK_NULL_HANDLE,
-                                           Draw::DepthPrepass, opt_.motion);
-  surface_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vsm.get(), fsm.get(),
-                                             opt_.single_sample ? Draw::ShadeOpaque : Draw::Shade, opt_.motion);
+  vertex_module_ = make_shader_module(ctx, vs.spirv);
+  fragment_defines_ = defines;
+  fragment_hash_ = sc.source_hash(opt_.program.fragment, ShaderStage::Fragment, defines);
+  depth_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vertex_module_.get(),
+                                           VK_NULL_HANDLE, Draw::DepthPrepass, opt_.motion);
+  // With the frame's lighting as constants, the shading pipeline waits for the first frame's values.
+  if (!opt_.program.frame_lighting_constants) build_surface_pipeline(defines);
   if (opt_.sky) {
     std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0")};
     CompiledShader svs = sc.compile("passes/sky.vert", ShaderStage::Vertex);
@@ -316,6 +319,23 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
   if (opt_.single_sample && in.samples.size() != 1)
     throw VulkanError("surface pass \"" + opt_.name + "\": single_sample, but the frame has " +
                       std::to_string(in.samples.size()) + " samples");
+  if (opt_.program.frame_lighting_constants) {
+    // The lighting fields in frame.glsl's order (FRAME_LIGHTING_WORDS); a frame
+    // that brings other values than the last gets a pipeline compiled for them
+    // (no earlier frame's commands are pending: the graph waits for each frame).
+    static_assert(sizeof(glm::vec4) == 16 && sizeof(FrameUniforms::env_sh) == 9 * 16);
+    std::array<glm::vec4, 11> lighting;
+    lighting[0] = in.uniforms.sun_dir;
+    lighting[1] = in.uniforms.sun_L;
+    std::copy(std::begin(in.uniforms.env_sh), std::end(in.uniforms.env_sh), lighting.begin() + 2);
+    std::string define = words_define("FRAME_LIGHTING_WORDS", lighting.data(), sizeof lighting);
+    if (define != lighting_define_) {
+      std::vector<std::string> defines = fragment_defines_;
+      defines.push_back(define);
+      build_surface_pipeline(defines);
+      lighting_define_ = std::move(define);
+    }
+  }
   frame_ubo_.upload(&in.uniforms, sizeof in.uniforms);
   VkClearValue clears[3] = {};
   clears[opt_.motion ? 2 : 1].depthStencil = {1.0f, 0};
@@ -392,6 +412,13 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
     vkCmdPushConstants(cmd, down_layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
     vkCmdDispatch(cmd, (uint32_t(width_) + 7) / 8, (uint32_t(height_) + 7) / 8, 1);
   }
+}
+
+void SurfacePass::build_surface_pipeline(const std::vector<std::string>& defines) {
+  CompiledShader fs = default_shader_compiler().compile(opt_.program.fragment, ShaderStage::Fragment, defines);
+  ShaderModule fsm = make_shader_module(ctx_, fs.spirv);
+  surface_pipeline_ = make_graphics_pipeline(ctx_, layout_.get(), render_pass_.get(), vertex_module_.get(), fsm.get(),
+                                             opt_.single_sample ? Draw::ShadeOpaque : Draw::Shade, opt_.motion);
 }
 
 // ---------------------------------------------------------------- SurfaceRenderer

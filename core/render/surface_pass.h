@@ -75,6 +75,11 @@ class SurfacePass final : public Pass {
   Framebuffer framebuffer_;
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;
+  void build_surface_pipeline(const std::vector<std::string>& fragment_defines);
+
+  ShaderModule vertex_module_;
+  std::vector<std::string> fragment_defines_;  // without the lighting constants
+  std::string lighting_define_;                // what the surface pipeline was built with (frame_lighting_constants)
   Pipeline depth_pipeline_, surface_pipeline_, sky_pipeline_;
   VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;  // with a stencil when samples accumulate
   Buffer frame_ubo_, material_ubo_;

@@ -166,6 +166,18 @@ struct Prepared {
   }
 };
 
+std::string words_define(const std::string& name, const void* data, std::size_t bytes) {
+  std::string out = name + "=";
+  for (std::size_t i = 0; i + 4 <= bytes; i += 4) {
+    std::uint32_t u;
+    std::memcpy(&u, static_cast<const unsigned char*>(data) + i, 4);
+    char w[16];
+    std::snprintf(w, sizeof w, "%s0x%08xu", i ? "," : "", unsigned(u));
+    out += w;
+  }
+  return out;
+}
+
 std::string ShaderCompiler::source_hash(const std::string& path, ShaderStage stage,
                                         const std::vector<std::string>& defines) {
   Prepared p(shader_dir_, path, stage, defines);

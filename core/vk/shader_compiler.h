@@ -4,6 +4,7 @@
 // fully preprocessed source (so an edit in any include invalidates it).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -41,6 +42,11 @@ class ShaderCompiler {
   std::string shader_dir_;
   std::string cache_dir_;
 };
+
+// The define NAME=w0,w1,... of `bytes` bytes of 32-bit words (hex unsigned
+// literals, in order): how a shader takes host data as constants that it
+// turns back into floats with uintBitsToFloat, bit-exact.
+std::string words_define(const std::string& name, const void* data, std::size_t bytes);
 
 // The process-wide compiler for the project's shader folder.
 ShaderCompiler& default_shader_compiler();

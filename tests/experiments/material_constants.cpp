@@ -1,8 +1,11 @@
-// The sand material's parameters folded into the shader as constants
-// (core::material_constants_define, what sand_program() does) render what the
-// same program renders from its uniform block: the constants' mapping onto the
-// fields of SandParams (std140 offsets) is right for every field a frame uses,
-// and folding changes a pixel by no more than the compiler's constant folding.
+// The sand material's parameters and the frame's lighting folded into the
+// shader as constants (core::material_constants_define and
+// MaterialProgram::frame_lighting_constants, what sand_program() does) render
+// what the same program renders from its uniform blocks: the constants'
+// mapping onto the fields of SandParams (std140 offsets) and onto the sun and
+// sky fields of the frame block is right for every field a frame uses, folding
+// changes a pixel by no more than the compiler's constant folding, and a frame
+// with other lighting is rendered with its own.
 #include "core/material/program.h"
 #include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
@@ -62,19 +65,24 @@ core::SandParams distinct_params(core::GlintModel model, uint32_t compat, bool e
   return p;
 }
 
+// The scene of kScene on the shared device.
+struct TestScene {
+  core::VkContext& ctx = test::shared_context();
+  const ExperimentSpec spec = ExperimentSpec::from_json(nlohmann::json::parse(kScene), "inline-test");
+  const SceneData data = build_scene(spec, metrics::ColorManager());
+  core::SceneGpu scene{ctx, data.mesh, data.env_texture};
+  const int w = spec.width, h = spec.height;
+  const std::vector<core::SamplePush> one = {{spec.path.frame(0, w, h).view_proj, {0.0f, 0.0f, 1.0f, 0.0f}}};
+};
+
 }  // namespace
 
 TEST(MaterialConstants, FoldedParametersRenderWhatTheUniformBlockRenders) {
-  core::VkContext& ctx = test::shared_context();
-  test::ValidationGuard guard(ctx);
-  const ExperimentSpec spec = ExperimentSpec::from_json(nlohmann::json::parse(kScene), "inline-test");
-  const SceneData data = build_scene(spec, metrics::ColorManager());
-  core::SceneGpu scene(ctx, data.mesh, data.env_texture);
-  const int w = spec.width, h = spec.height;
-  const core::FrameUniforms fu = frame_uniforms(spec, data, 0);
-  const std::vector<core::SamplePush> one = {{spec.path.frame(0, w, h).view_proj, {0.0f, 0.0f, 1.0f, 0.0f}}};
+  TestScene t;
+  test::ValidationGuard guard(t.ctx);
+  const core::FrameUniforms fu = frame_uniforms(t.spec, t.data, 0);
   // Close and far field with the transition inside the view (distances about 1.5 to 9).
-  const core::SandFeatures needs = data.range;
+  const core::SandFeatures needs = t.data.range;
 
   struct Case {
     core::GlintModel model;
@@ -93,8 +101,10 @@ TEST(MaterialConstants, FoldedParametersRenderWhatTheUniformBlockRenders) {
     d.erase(std::remove_if(d.begin(), d.end(), [](const std::string& s) { return s.rfind("SAND_PARAMS_WORDS=", 0) == 0; }),
             d.end());
     ASSERT_EQ(d.size() + 1, n_before) << "sand_program() adds the constants define once";
-    const Image a = core::SurfaceRenderer(ctx, scene, w, h, folded).render(fu, one).images.at("color");
-    const Image b = core::SurfaceRenderer(ctx, scene, w, h, from_block).render(fu, one).images.at("color");
+    ASSERT_TRUE(folded.program.frame_lighting_constants);
+    from_block.program.frame_lighting_constants = false;
+    const Image a = core::SurfaceRenderer(t.ctx, t.scene, t.w, t.h, folded).render(fu, t.one).images.at("color");
+    const Image b = core::SurfaceRenderer(t.ctx, t.scene, t.w, t.h, from_block).render(fu, t.one).images.at("color");
     double worst = 0.0, sum = 0.0;
     for (size_t i = 0; i < a.data.size(); ++i) {
       ASSERT_TRUE(std::isfinite(a.data[i]) && std::isfinite(b.data[i])) << i;
@@ -104,4 +114,37 @@ TEST(MaterialConstants, FoldedParametersRenderWhatTheUniformBlockRenders) {
     EXPECT_GT(sum, 0.0);  // the frame shows the material
     EXPECT_LE(worst, 1e-4);
   }
+}
+
+TEST(MaterialConstants, FoldedLightingFollowsTheFrame) {
+  // One pass renders a frame, then the same view under another sun and sky:
+  // it must give exactly what a fresh pass gives for the second lighting (the
+  // pass recompiles when the lighting it folded in changes), which differs
+  // from the first frame.
+  TestScene t;
+  test::ValidationGuard guard(t.ctx);
+  const core::FrameUniforms first = frame_uniforms(t.spec, t.data, 0);
+  core::FrameUniforms second = first;
+  second.sun_dir = glm::vec4(glm::normalize(glm::vec3(-0.4f, 0.5f, 0.2f)), first.sun_dir.w);
+  second.sun_L *= 0.5f;
+  for (glm::vec4& c : second.env_sh) c *= glm::vec4(1.3f, 0.9f, 0.6f, 1.0f);
+  core::SurfacePassOptions o;
+  o.program = core::sand_program(core::SandParams::preset("thesis-hdri-match"), t.data.range, core::ProgramRole::Variant);
+  ASSERT_TRUE(o.program.frame_lighting_constants);
+
+  core::SurfaceRenderer reused(t.ctx, t.scene, t.w, t.h, o);
+  const Image a = reused.render(first, t.one).images.at("color");
+  const Image b = reused.render(second, t.one).images.at("color");
+  const Image fresh = core::SurfaceRenderer(t.ctx, t.scene, t.w, t.h, o).render(second, t.one).images.at("color");
+  ASSERT_EQ(b.data.size(), fresh.data.size());
+  size_t differ_from_fresh = 0, surface = 0, relit = 0;
+  for (size_t i = 0; i < b.data.size(); ++i) differ_from_fresh += b.data[i] != fresh.data[i];
+  for (size_t px = 0; px < b.pixel_count(); ++px) {
+    if (b.data[px * 4 + 3] <= 0.0f) continue;  // the sky: not lit by the sun or the SH term
+    ++surface;
+    relit += b.data[px * 4] != a.data[px * 4] && b.data[px * 4 + 2] != a.data[px * 4 + 2];
+  }
+  EXPECT_EQ(differ_from_fresh, 0u);
+  EXPECT_GT(surface, b.pixel_count() / 4);
+  EXPECT_EQ(relit, surface) << "every surface pixel must show the second lighting";
 }
