@@ -13,13 +13,15 @@
 // no output is darker than the darkest input, out >= min(current frame, last
 // output) (the history is a convex combination of last outputs and a
 // rectification box never excludes the current colours' mean, so only
-// filter ringing can break it). Two configurations (rgb, bilinear,
-// centre velocity, fixed feedback, no HDR mapping; clamp none or variance)
-// are compared with an fp64 model of the resolve:
-// out = (1 - alpha) h + alpha current where the history is valid (not the
-// first frame, on screen, no disocclusion at the four taps, finite), else
-// current; h = bilinear(last output, p + 1/2 - v), clamped to mean +- gamma
-// sigma of the 3x3 current colours for the variance configuration.
+// filter ringing can break it). Three configurations (rgb, centre velocity,
+// fixed feedback, no HDR mapping; bilinear history with clamp none or
+// variance, Catmull-Rom history with clamp none) are compared with an fp64
+// model of the resolve: out = (1 - alpha) h + alpha current where the history
+// is valid (not the first frame, on screen, no disocclusion at the four taps,
+// finite), else current; h = the bilinear or Catmull-Rom (4x4 texels,
+// negative results to 0) resample of the last output at p + 1/2 - v, clamped
+// to mean +- gamma sigma of the 3x3 current colours for the variance
+// configuration.
 #include "core/render/surface_pass.h"
 #include "core/render/taa_pass.h"
 #include "core/util/image.h"
@@ -62,6 +64,13 @@ Config simple_config() {
   c.fp64 = true;
   return c;
 }
+// The same with Falcor's Catmull-Rom history.
+Config catmull_rom_config() {
+  Config c = simple_config();
+  c.label = "no-clamp-catmull-rom";
+  c.s.history_filter = core::TaaHistoryFilter::CatmullRom;
+  return c;
+}
 // The same with the variance clamp (mean +- gamma sigma over 3x3, in rgb).
 Config variance_rgb_config() {
   Config c = simple_config();
@@ -97,9 +106,10 @@ struct TaaCaseSpec {
 // The fp64 model of the unrectified resolve at pixel (x, y), channel c: `prev`
 // the last output, `prev_motion` last frame's motion target (its z is the
 // distance the history keeps), `tol` the disocclusion tolerance, `gamma` > 0:
-// the variance clamp in rgb (0: none).
+// the variance clamp in rgb (0: none); `catmull_rom` the history filter
+// (else bilinear).
 double model_pixel(const Image& cur, const Image* prev, const Image& motion, const Image* prev_motion, float alpha,
-                   double tol, double gamma, int x, int y, int c) {
+                   double tol, double gamma, bool catmull_rom, int x, int y, int c) {
   const int W = cur.width, H = cur.height;
   double current = std::max(0.0f, cur.at(x, y, c));
   if (!prev) return current;
@@ -135,6 +145,20 @@ double model_pixel(const Image& cur, const Image* prev, const Image& motion, con
   if (!valid) return current;
   auto mix = [](double a, double b, double t) { return a * (1 - t) + b * t; };
   double h = mix(mix(at(ix, iy), at(ix + 1, iy), fx), mix(at(ix, iy + 1), at(ix + 1, iy + 1), fx), fy);
+  if (catmull_rom) {  // the cubic convolution kernel with a = -1/2 at the four texels per axis
+    auto weights = [](double t, double w[4]) {
+      w[0] = t * (-0.5 + t * (1.0 - 0.5 * t));
+      w[1] = 1.0 + t * t * (-2.5 + 1.5 * t);
+      w[2] = t * (0.5 + t * (2.0 - 1.5 * t));
+      w[3] = t * t * (-0.5 + 0.5 * t);
+    };
+    double wx[4], wy[4];
+    weights(fx, wx);
+    weights(fy, wy);
+    h = 0;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) h += wx[i] * wy[j] * at(ix - 1 + i, iy - 1 + j);
+  }
   if (!std::isfinite(h)) return current;
   h = std::max(h, 0.0);
   if (gamma > 0) {  // variance clamp in rgb: mean +- gamma sigma of the 3x3 current colours
@@ -233,7 +257,8 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
             if (cfg.fp64) {
               double want = model_pixel(cur, have_prev ? &prev : nullptr, mot, have_prev ? &prev_motion : nullptr,
                                         float(cfg.s.alpha), cfg.s.disocclusion_tolerance,
-                                        cfg.s.clamp == core::TaaClamp::Variance ? cfg.s.gamma : 0.0, x, y, c);
+                                        cfg.s.clamp == core::TaaClamp::Variance ? cfg.s.gamma : 0.0,
+                                        cfg.s.history_filter == core::TaaHistoryFilter::CatmullRom, x, y, c);
               err.add(v, want, 1e-30, cfg.label + " frame " + std::to_string(k) + " (" + std::to_string(x) + ", " +
                                           std::to_string(y) + ")");
             }
@@ -336,7 +361,7 @@ void add_taa_cases(std::vector<Case>& cases) {
     std::vector<TaaFrame> f;
     const glm::vec2 mv[] = {{0, 0}, {1e6f, -1e6f}, {-1e30f, 5}, {32.5f, 0}, {-32, 0}, {0.5f, 18.5f}, {3, -2}};
     for (const glm::vec2& m : mv) f.push_back({glm::vec3(1.0f), 1, 0.1f, true, m});
-    specs.push_back({"taa.motion-offscreen", true, {simple_config(), falcor_config()}, f, 32, 18,
+    specs.push_back({"taa.motion-offscreen", true, {simple_config(), catmull_rom_config(), falcor_config()}, f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,
                      "every pixel's motion vector (1e6, -1e6), (-1e30, 5), (32.5, 0), (-32, 0), (0.5, 18.5), (3, -2): "
                      "off-screen, at the edges, partly on screen"});
@@ -352,9 +377,10 @@ void add_taa_cases(std::vector<Case>& cases) {
     std::vector<TaaFrame> f;
     const glm::vec2 mv[] = {{0, 0}, {0.5f, 0.5f}, {-0.49999f, 0}, {0.3f, -0.7f}, {31.999f, 17.999f}, {-0.001f, 0.001f}};
     for (const glm::vec2& m : mv) f.push_back({glm::vec3(1.0f), 1, 0.1f, true, m});
-    specs.push_back({"taa.motion-subpixel-and-edges", false, {simple_config()}, f, 32, 18,
+    specs.push_back({"taa.motion-subpixel-and-edges", true, {simple_config(), catmull_rom_config()}, f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,
-                     "fractional motion (bilinear history) and motion landing within 1e-3 of the image edges"});
+                     "fractional motion (bilinear and Catmull-Rom history) and motion landing within 1e-3 of the "
+                     "image edges"});
   }
   specs.push_back({"taa.rgba16f-color", true, {falcor_config(), simple_config()},
                    {{glm::vec3(6e4f), 1}, {glm::vec3(1e6f), 2, 0.1f}, {glm::vec3(1.0f), 1}, {glm::vec3(1e6f), 0}}, 32,

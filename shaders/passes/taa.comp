@@ -121,57 +121,58 @@ float space_luma(vec3 y) {
 
 vec4 fetch(sampler2D t, ivec2 p) { return texelFetch(t, clamp(p, ivec2(0), g_size - 1), 0); }
 
-// The 2x2 texels around continuous pixel position `pos` (texel centres at
-// +0.5) and pos's fraction between them.
+// The history around continuous pixel position q (texel centres at +0.5):
+// i0 = floor(q - 0.5), f = the fraction of q - 0.5 past i0, and the 2x2
+// texels i0 + (0|1, 0|1) (rgb, a = the distance kept with the history), which
+// both filters and the disocclusion test use.
 struct Taps {
-  vec3 a, b, c, d;  // (0, 0), (1, 0), (0, 1), (1, 1)
+  ivec2 i0;
   vec2 f;
+  vec4 a, b, c, d;  // (0, 0), (1, 0), (0, 1), (1, 1)
 };
-Taps taps_2x2(sampler2D t, vec2 pos) {
-  vec2 q = pos - 0.5;
-  ivec2 i = ivec2(floor(q));  // q is within [-1, size] here: no out-of-range conversion
+Taps taps_2x2(sampler2D t, vec2 q) {
+  vec2 qq = q - 0.5;
   Taps k;
-  k.f = q - floor(q);
-  k.a = fetch(t, i).rgb;
-  k.b = fetch(t, i + ivec2(1, 0)).rgb;
-  k.c = fetch(t, i + ivec2(0, 1)).rgb;
-  k.d = fetch(t, i + ivec2(1, 1)).rgb;
+  k.i0 = ivec2(floor(qq));  // q is within [0, size] here: no out-of-range conversion
+  k.f = qq - floor(qq);
+  k.a = fetch(t, k.i0);
+  k.b = fetch(t, k.i0 + ivec2(1, 0));
+  k.c = fetch(t, k.i0 + ivec2(0, 1));
+  k.d = fetch(t, k.i0 + ivec2(1, 1));
   return k;
 }
 
-// Bilinear resample at `pos`.
-vec3 bilinear(sampler2D t, vec2 pos) {
-  Taps k = taps_2x2(t, pos);
-  return mix(mix(k.a, k.b, k.f.x), mix(k.c, k.d, k.f.x), k.f.y);
+vec3 bilinear(Taps k) { return mix(mix(k.a.rgb, k.b.rgb, k.f.x), mix(k.c.rgb, k.d.rgb, k.f.x), k.f.y); }
+
+// One row of the 4x4: its outer texels fetched, its inner two given; wx the
+// four horizontal weights.
+vec3 catmull_rom_row(sampler2D t, ivec2 p, vec3 inner0, vec3 inner1, vec4 wx) {
+  return wx.x * fetch(t, p + ivec2(-1, 0)).rgb + wx.y * inner0 + wx.z * inner1 + wx.w * fetch(t, p + ivec2(2, 0)).rgb;
 }
 
-// Catmull-Rom in Falcor's 9-tap form: the 4x4 bicubic taps with the two
-// middle weights of each axis merged into one bilinear lookup.
-vec3 catmull_rom(sampler2D t, vec2 pos) {
-  vec2 tc = floor(pos - 0.5) + 0.5;
-  vec2 f = pos - tc, f2 = f * f, f3 = f2 * f;
+// Catmull-Rom over the 4x4 texels i0 - 1 .. i0 + 2, the filter of Falcor's
+// TAA. Falcor samples it in 9 bilinear taps (the two middle weights of each
+// axis merged into one hardware-filtered lookup, exact because both are >= 0);
+// where every tap is a texelFetch those 9 lookups are 36 fetches, so here the
+// 16 texels are weighted directly (the same filter; sums rounded in another
+// order). The inner 2x2 are k's texels.
+vec3 catmull_rom(sampler2D t, Taps k) {
+  vec2 f = k.f, f2 = f * f, f3 = f2 * f;
   vec2 w0 = f2 - 0.5 * (f3 + f);
   vec2 w1 = 1.5 * f3 - 2.5 * f2 + 1.0;
   vec2 w3 = 0.5 * (f3 - f2);
   vec2 w2 = 1.0 - w0 - w1 - w3;
-  vec2 w12 = w1 + w2;
-  vec2 p0 = tc - 1.0, p3 = tc + 2.0, p12 = tc + w2 / max(w12, vec2(1e-8));
-  vec3 r = vec3(0.0);
-  r += bilinear(t, vec2(p0.x, p0.y)) * w0.x * w0.y;
-  r += bilinear(t, vec2(p12.x, p0.y)) * w12.x * w0.y;
-  r += bilinear(t, vec2(p3.x, p0.y)) * w3.x * w0.y;
-  r += bilinear(t, vec2(p0.x, p12.y)) * w0.x * w12.y;
-  r += bilinear(t, vec2(p12.x, p12.y)) * w12.x * w12.y;
-  r += bilinear(t, vec2(p3.x, p12.y)) * w3.x * w12.y;
-  r += bilinear(t, vec2(p0.x, p3.y)) * w0.x * w3.y;
-  r += bilinear(t, vec2(p12.x, p3.y)) * w12.x * w3.y;
-  r += bilinear(t, vec2(p3.x, p3.y)) * w3.x * w3.y;
+  vec4 wx = vec4(w0.x, w1.x, w2.x, w3.x);
+  ivec2 up = k.i0 - ivec2(0, 1), down = k.i0 + ivec2(0, 2);
+  vec3 r = w0.y * catmull_rom_row(t, up, fetch(t, up).rgb, fetch(t, up + ivec2(1, 0)).rgb, wx) +
+           w1.y * catmull_rom_row(t, k.i0, k.a.rgb, k.b.rgb, wx) +
+           w2.y * catmull_rom_row(t, k.i0 + ivec2(0, 1), k.c.rgb, k.d.rgb, wx) +
+           w3.y * catmull_rom_row(t, down, fetch(t, down).rgb, fetch(t, down + ivec2(1, 0)).rgb, wx);
 #if TAA_DERING
   // Deringing (FSR2): keep the result within the range of the 2x2 texels
-  // around pos, so a bright glint's negative lobes cannot darken its
+  // around q, so a bright glint's negative lobes cannot darken its
   // neighbours (core/render/taa_settings.h, `dering`).
-  Taps k = taps_2x2(t, pos);
-  r = clamp(r, min(min(k.a, k.b), min(k.c, k.d)), max(max(k.a, k.b), max(k.c, k.d)));
+  r = clamp(r, min(min(k.a.rgb, k.b.rgb), min(k.c.rgb, k.d.rgb)), max(max(k.a.rgb, k.b.rgb), max(k.c.rgb, k.d.rgb)));
 #endif
   return max(r, vec3(0.0));  // the negative lobes can ring below zero
 }
@@ -249,16 +250,15 @@ void main() {
   vec2 q = vec2(p) + 0.5 - v;
   bool on_screen = all(greaterThanEqual(q, vec2(0.0))) && all(lessThanEqual(q, vec2(g_size))) && finite3(vec3(q, 0.0));
   if (!on_screen) valid = false;
+  Taps k;
   if (valid) {
     // The distances stored with last frame's history (0 = sky), at the four
     // bilinear taps around q: the same rule as the flicker metric's mask
     // (metrics/flicker.h): the interpolated distance matches the point's own
     // distance last frame, and no tap lies on another surface.
-    vec2 qq = q - 0.5;
-    vec2 f = qq - floor(qq);
-    ivec2 i0 = ivec2(floor(qq));
-    vec4 d = vec4(fetch(history_tex, i0).a, fetch(history_tex, i0 + ivec2(1, 0)).a,
-                  fetch(history_tex, i0 + ivec2(0, 1)).a, fetch(history_tex, i0 + ivec2(1, 1)).a);
+    k = taps_2x2(history_tex, q);
+    vec2 f = k.f;
+    vec4 d = vec4(k.a.a, k.b.a, k.c.a, k.d.a);
     vec4 wt = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
     if (mc.z > 0.0) {
       bvec4 off = greaterThan(abs(d - mc.w), vec4(5.0 * tol * mc.w));
@@ -271,9 +271,9 @@ void main() {
   vec3 hist_lin = vec3(0.0);
   if (valid) {
 #if TAA_FILTER == FILTER_CATMULL_ROM
-    hist_lin = catmull_rom(history_tex, q);
+    hist_lin = catmull_rom(history_tex, k);
 #else
-    hist_lin = bilinear(history_tex, q);
+    hist_lin = bilinear(k);
 #endif
     valid = finite3(hist_lin);
   }
