@@ -227,7 +227,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   if (!opt_.program.frame_lighting_constants) build_surface_pipeline(defines);
   if (opt_.sky) {
     std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0")};
-    CompiledShader svs = sc.compile("passes/sky.vert", ShaderStage::Vertex);
+    CompiledShader svs = sc.compile("passes/sky.vert", ShaderStage::Vertex, sky_defines);
     CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment, sky_defines);
     ShaderModule svm = make_shader_module(ctx, svs.spirv), sfm = make_shader_module(ctx, sfs.spirv);
     sky_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), svm.get(), sfm.get(),

@@ -17,24 +17,29 @@
 #define SURFACE_MOTION 0
 #endif
 
-// Continuous pixel coordinates of a clip-space position (w > 0).
-vec2 clip_to_pixel(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame_resolution.xy; }
+// The continuous pixel position of clip-space point `clip`, homogeneous:
+// (x, y, w) with the pixel at (x / w, y / w), for w > 0. Linear in clip, so the
+// vertex stage computes it per vertex and the rasteriser interpolates it
+// exactly (perspective-correct interpolation reproduces what is affine in the
+// surface point); the fragment stage then reads no matrix from the frame's
+// uniform block (on lavapipe each value read there costs a bounds-checked load
+// per eight fragments, and the two matrices and the eyes were 38 of them).
+vec3 clip_to_pixel_h(vec4 clip) { return vec3((clip.xy * 0.5 + 0.5 * clip.w) * frame_resolution.xy, clip.w); }
 
-vec4 surface_motion(vec3 x, vec3 prev_x) {
-  vec4 c = frame_view_proj * vec4(x, 1.0);
-  vec4 c_prev = frame_prev_view_proj * vec4(prev_x, 1.0);
-  float d = length(x - frame_camera_pos.xyz);
-  if (!(c.w > 1e-20) || !(c_prev.w > 1e-20)) return vec4(0.0, 0.0, d, -1.0);
-  vec2 v = clip_to_pixel(c) - clip_to_pixel(c_prev);
-  return vec4(v, d, length(prev_x - frame_prev_camera_pos.xyz));
+// The motion target's value of a surface point from what the vertex stage
+// interpolated: its homogeneous pixel positions now and in frame t-1, and its
+// offsets from the eye now and then (passes/surface.vert).
+vec4 surface_motion(vec3 pix, vec3 prev_pix, vec3 eye_offset, vec3 prev_eye_offset) {
+  float d = length(eye_offset);
+  if (!(pix.z > 1e-20) || !(prev_pix.z > 1e-20)) return vec4(0.0, 0.0, d, -1.0);
+  return vec4(pix.xy / pix.z - prev_pix.xy / prev_pix.z, d, length(prev_eye_offset));
 }
 
-// The sky is at infinity: only the camera's rotation moves it.
-vec4 sky_motion(vec3 dir) {
-  vec4 c = frame_view_proj * vec4(dir, 0.0);
-  vec4 c_prev = frame_prev_view_proj * vec4(dir, 0.0);
-  if (!(c.w > 1e-20) || !(c_prev.w > 1e-20)) return vec4(0.0, 0.0, 0.0, -1.0);
-  return vec4(clip_to_pixel(c) - clip_to_pixel(c_prev), 0.0, 0.0);
+// The sky is at infinity: only the camera's rotation moves it. pix, prev_pix:
+// clip_to_pixel_h of the view ray as a direction (w = 0) in both frames.
+vec4 sky_motion(vec3 pix, vec3 prev_pix) {
+  if (!(pix.z > 1e-20) || !(prev_pix.z > 1e-20)) return vec4(0.0, 0.0, 0.0, -1.0);
+  return vec4(pix.xy / pix.z - prev_pix.xy / prev_pix.z, 0.0, 0.0);
 }
 
 #endif

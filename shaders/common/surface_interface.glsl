@@ -9,6 +9,11 @@ layout(location = 1) in vec3 v_x;       // world position, this frame
 layout(location = 2) in vec3 v_n;       // world macro normal (not normalised)
 layout(location = 3) in vec4 v_t;       // world tangent, w = bitangent sign
 layout(location = 4) in vec2 v_uv;      // surface uv
-layout(location = 5) in vec3 v_prev_x;  // world position of the same surface point in the previous frame
+#if SURFACE_MOTION  // common/motion.glsl's surface_motion() of the point
+layout(location = 5) in vec3 v_pix;             // homogeneous pixel position, this frame
+layout(location = 6) in vec3 v_prev_pix;        // the same point's in the previous frame
+layout(location = 7) in vec3 v_eye_offset;      // world position - eye, this frame
+layout(location = 8) in vec3 v_prev_eye_offset; // the same in the previous frame
+#endif
 
 #endif

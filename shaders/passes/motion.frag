@@ -16,6 +16,6 @@ layout(location = 1) out vec4 out_motion;
 void main() {
   out_color = vec4(0.0, 0.0, 0.0, sample_jitter_weight.z);
 #if SURFACE_MOTION
-  out_motion = surface_motion(v_x, v_prev_x);
+  out_motion = surface_motion(v_pix, v_prev_pix, v_eye_offset, v_prev_eye_offset);
 #endif
 }

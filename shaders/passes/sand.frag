@@ -71,6 +71,6 @@ void main() {
   out_color.rgb = mix(min(out_color.rgb, vec3(65504.0)), out_color.rgb, isnan(out_color.rgb));
 #endif
 #if SURFACE_MOTION
-  out_motion = surface_motion(v_x, v_prev_x);
+  out_motion = surface_motion(v_pix, v_prev_pix, v_eye_offset, v_prev_eye_offset);
 #endif
 }

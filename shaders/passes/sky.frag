@@ -7,6 +7,10 @@ layout(set = 0, binding = 2) uniform sampler2D env_map;
 #include "common/motion.glsl"
 
 layout(location = 0) in vec3 v_ray;  // unnormalised view ray (passes/sky.vert)
+#if SURFACE_MOTION
+layout(location = 1) in vec3 v_pix;
+layout(location = 2) in vec3 v_prev_pix;
+#endif
 layout(location = 0) out vec4 out_color;
 #if SURFACE_MOTION
 layout(location = 1) out vec4 out_motion;  // camera rotation only (common/motion.glsl)
@@ -19,6 +23,6 @@ void main() {
   float w = sample_jitter_weight.z;
   out_color = vec4(L * w, 0.0);
 #if SURFACE_MOTION
-  out_motion = sky_motion(dir);
+  out_motion = sky_motion(v_pix, v_prev_pix);
 #endif
 }

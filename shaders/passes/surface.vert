@@ -1,8 +1,9 @@
 #version 450
 // Transforms the mesh for any surface pass; hands object and world positions,
-// the macro normal and tangent, and the previous frame's position (motion
-// vectors) to the fragment stage (common/surface_interface.glsl).
+// the macro normal and tangent, and with SURFACE_MOTION what the motion vector
+// needs (common/motion.glsl) to the fragment stage (common/surface_interface.glsl).
 #include "common/frame.glsl"
+#include "common/motion.glsl"
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
@@ -14,7 +15,12 @@ layout(location = 1) out vec3 v_x;
 layout(location = 2) out vec3 v_n;
 layout(location = 3) out vec4 v_t;
 layout(location = 4) out vec2 v_uv;
-layout(location = 5) out vec3 v_prev_x;  // same point, previous frame (motion vectors)
+#if SURFACE_MOTION
+layout(location = 5) out vec3 v_pix;
+layout(location = 6) out vec3 v_prev_pix;
+layout(location = 7) out vec3 v_eye_offset;
+layout(location = 8) out vec3 v_prev_eye_offset;
+#endif
 
 void main() {
   // The depth pre-pass and the shading pass run this shader in two pipelines
@@ -29,6 +35,12 @@ void main() {
   v_n = mat3(frame_normal_matrix) * in_normal;
   v_t = vec4(mat3(frame_model) * in_tangent.xyz, in_tangent.w);
   v_uv = in_uv;
-  v_prev_x = (frame_prev_model * vec4(in_position, 1.0)).xyz;
+#if SURFACE_MOTION
+  vec3 prev_x = (frame_prev_model * vec4(in_position, 1.0)).xyz;
+  v_pix = clip_to_pixel_h(frame_view_proj * x);
+  v_prev_pix = clip_to_pixel_h(frame_prev_view_proj * vec4(prev_x, 1.0));
+  v_eye_offset = x.xyz - frame_camera_pos.xyz;
+  v_prev_eye_offset = prev_x - frame_prev_camera_pos.xyz;
+#endif
   gl_Position = clip;
 }

@@ -12,6 +12,6 @@ void main() {
   float w = sample_jitter_weight.z;
   out_color = vec4(v_x * w, w);
 #if SURFACE_MOTION
-  out_motion = surface_motion(v_x, v_prev_x);
+  out_motion = surface_motion(v_pix, v_prev_pix, v_eye_offset, v_prev_eye_offset);
 #endif
 }

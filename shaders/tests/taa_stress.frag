@@ -33,7 +33,7 @@ void main() {
   float w = sample_jitter_weight.z;
   out_color = vec4(c * w, w);
 #if SURFACE_MOTION
-  vec4 m = surface_motion(v_x, v_prev_x);
+  vec4 m = surface_motion(v_pix, v_prev_pix, v_eye_offset, v_prev_eye_offset);
   if (env_sh[0].z > 0.5) m = vec4(env_sh[0].xy, env_sh[0].w, env_sh[0].w);
   out_motion = m;
 #endif
