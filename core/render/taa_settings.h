@@ -2,7 +2,7 @@
 // experiment option, under a variant's "taa" object. Each enum has one name
 // table (the JSON values). Defaults are Falcor's TAA pass
 // (RenderPasses/Antialiasing/TAA: Halton(2,3) x16 jitter, alpha 0.1, clamp to
-// mean +- 1.0 sigma over 3x3 in YCgCo, 9-tap Catmull-Rom history, the longest
+// mean +- 1.0 sigma over 3x3 in YCgCo, Catmull-Rom history, the longest
 // motion vector in 3x3, Karis' alpha' = alpha d / (d + box range) near the
 // box edge, no HDR weighting). One option beyond Falcor, off by default:
 // `dering`, below.
@@ -30,7 +30,7 @@ inline constexpr EnumTable<TaaSpace, 2> kTaaSpaceNames{{{TaaSpace::Rgb, "rgb"}, 
 // How the history is resampled at the reprojected position.
 enum class TaaHistoryFilter {
   Bilinear,    // 4 taps
-  CatmullRom,  // Falcor's 9-tap Catmull-Rom (bilinear taps combined; Jimenez/vec3.ca)
+  CatmullRom,  // Falcor's Catmull-Rom (Falcor: 9 bilinear taps, Jimenez/vec3.ca; here its 16 texels)
 };
 inline constexpr EnumTable<TaaHistoryFilter, 2> kTaaHistoryFilterNames{
     {{TaaHistoryFilter::Bilinear, "bilinear"}, {TaaHistoryFilter::CatmullRom, "catmull_rom"}}};
