@@ -6,7 +6,9 @@
 //      passes, a trivial fragment shader), the full sand material and the
 //      variants with features compiled out; per row ms/frame, Mpix/s, the
 //      ratio to the full material, and what the material itself costs (row
-//      minus floor) and the floor's share of the row.
+//      minus floor) and the floor's share of the row. Then floor, full and
+//      far only on the same surface with 32 triangles, their ratios among
+//      themselves: what the floor is when geometry costs nothing.
 //   2. The reference: ms per sample of a grid x grid reference frame against a
 //      1-spp frame's, and a geometry-bound case (a small image, many samples).
 //   3. The TAA resolve against the surface pass of the same frame.
@@ -65,6 +67,7 @@ struct Case {
   std::string name;
   core::MaterialProgram program;
   bool single_sample = true;  // one opaque draw (as the runner renders 1-spp frames)
+  bool coarse = false;        // the same surface with the fewest triangles (what the floor is without geometry)
 };
 
 double median(std::vector<double> v) {
@@ -107,6 +110,10 @@ int main(int argc, char** argv) {
   SceneData data = build_scene(spec, cm);
   core::VkContext ctx(core::ContextOptions{device, false});
   core::SceneGpu scene(ctx, data.mesh, data.env_texture);
+  core::MeshSpec coarse_spec = spec.mesh;
+  coarse_spec.tessellation = 4;
+  const core::Mesh coarse_mesh = core::build_mesh(coarse_spec);
+  core::SceneGpu coarse_scene(ctx, coarse_mesh, data.env_texture);
   const char* lp_threads = std::getenv("LP_NUM_THREADS");
   std::printf("device: %s (LP_NUM_THREADS=%s)\nscene: wavy plane (%zu triangles), orbit-close frame 0, "
               "thesis-hdri-match sand with glints; %d timed frames after 2 warm-up (median)\n",
@@ -137,6 +144,11 @@ int main(int argc, char** argv) {
   core::SandParams minimal = no_t;
   minimal.glint_model = core::GlintModel::None;
   cases.push_back({"far only, T = 0, no glints", sand(minimal, 1e6, 1e30)});
+  // The same three on the surface tessellated 4x4 (32 triangles): the floor without the geometry's cost.
+  const size_t first_coarse = cases.size();
+  cases.push_back({"32 tris: floor", core::geometry_only_program(), true, true});
+  cases.push_back({"32 tris: full", sand(base, 0.0, 1e30), true, true});
+  cases.push_back({"32 tris: far only, T = 0, no glints", sand(minimal, 1e6, 1e30), true, true});
 
   auto section = [&](const char* name) { return only.empty() || only == name; };
   for (auto [w, h] : sizes) {
@@ -150,15 +162,17 @@ int main(int argc, char** argv) {
       core::SurfacePassOptions o;
       o.program = c.program;
       o.single_sample = c.single_sample;
-      passes.push_back(std::make_unique<core::SurfaceRenderer>(ctx, scene, w, h, o));
+      passes.push_back(std::make_unique<core::SurfaceRenderer>(ctx, c.coarse ? coarse_scene : scene, w, h, o));
       for (int i = 0; i < 2; ++i) passes.back()->render(one.uniforms, one.samples);  // warm-up (JIT, caches)
     }
     std::vector<std::vector<double>> ms(cases.size());
     for (int i = 0; i < frames; ++i)
       for (size_t c = 0; c < cases.size(); ++c)
         ms[c].push_back(passes[c]->render(one.uniforms, one.samples).timings[0].gpu_ms);
-    const double floor_ms = median(ms[0]), full_ms = median(ms[1]);
     for (size_t c = 0; c < cases.size(); ++c) {
+      // Ratios and the floor within each mesh: the main one, then the coarse one.
+      const size_t base_row = c < first_coarse ? 0 : first_coarse;
+      const double floor_ms = median(ms[base_row]), full_ms = median(ms[base_row + 1]);
       const double m = median(ms[c]);
       std::printf("  %-34s %9.2f %9.2f %7.2f %11.2f %10.0f%%\n", cases[c].name.c_str(), m,
                   double(w) * h * 1e-6 / (m * 1e-3), m / full_ms, m - floor_ms, 100.0 * floor_ms / m);
