@@ -15,7 +15,7 @@
 //   4. out = mix(history, current, alpha'), alpha' from TAA_FEEDBACK (and the
 //      anti-flicker guard), mapped back to linear radiance, clamped to >= 0.
 // Inputs use texelFetch only (exact, no filtering hardware needed).
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = TAA_GROUP_X, local_size_y = TAA_GROUP_Y) in;  // core/render/taa_pass.cpp chooses
 
 layout(set = 0, binding = 0) uniform sampler2D color_tex;     // this frame, jittered, RGBA32F
 layout(set = 0, binding = 1) uniform sampler2D motion_tex;    // common/motion.glsl layout
