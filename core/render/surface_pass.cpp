@@ -202,7 +202,9 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
                       "colour need");
   depth_format_ = opt_.single_sample ? kDepthFormat : kDepthStencilFormat;
   if (!ctx.format_supports(depth_format_, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
-    throw VulkanError(ctx.info().name + " cannot render to D32_SFLOAT_S8_UINT, which accumulating samples needs");
+    throw VulkanError(ctx.info().name + " cannot render depth to " +
+                      (opt_.single_sample ? "D32_SFLOAT"
+                                          : "D32_SFLOAT_S8_UINT (depth and the stencil accumulated samples need)"));
   render_pass_ = make_render_pass(ctx, opt_.color_format, depth_format_, opt_.motion);
 
   std::vector<VkDescriptorSetLayoutBinding> bindings = {

@@ -3,10 +3,12 @@
 // alpha = surface coverage. A frame is the mean of one draw per sample of
 // FrameInputs::samples (fp32 additive blending, box filter): one sample for a
 // normal frame, N jittered ones for supersampling or the reference. Each
-// sample is a depth pre-pass, then shading with depth test EQUAL, so exactly
-// the nearest surface is shaded and accumulated whatever the draw order; then
-// (option `sky`) the environment fills what no surface covers. With option
-// `single_sample` one opaque draw replaces the two (see there).
+// sample is a depth pre-pass, then shading with depth test EQUAL and a stencil
+// test that passes one fragment per pixel, so exactly one nearest surface is
+// shaded and accumulated whatever the draw order, ties included; then (option
+// `sky`) the environment fills what no surface covers. With option
+// `single_sample` one opaque draw replaces the two (see there), and with the
+// sky on nothing is cleared first: every pixel is written once.
 //
 // With option `motion` it also writes the "motion" target (RGBA32F, layout in
 // shaders/common/motion.glsl: motion vector in pixels, distance now, distance
