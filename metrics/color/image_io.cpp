@@ -140,6 +140,10 @@ void write_png(const std::string& path, const Image& display_encoded) {
   OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::UINT8);
   spec.alpha_channel = (img.channels == 2) ? 1 : (img.channels == 4 ? 3 : -1);
   spec.attribute("oiio:UnassociatedAlpha", 1);  // values as given: no un-premultiplication
+  // zlib level 3, the strongest of its fast (non-lazy) levels, instead of OpenImageIO's default 6: the
+  // default experiment with a warm cache and without its report 8.6, 9.5, 10.1 -> 7.6, 7.9, 8.1 s (three
+  // interleaved runs), its PNGs 10.8 -> 11.4 MB.
+  spec.attribute("png:compressionLevel", 3);
   write_atomic(path, "png", spec, OIIO::TypeDesc::UINT8, q.data());
 }
 
