@@ -200,11 +200,15 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   if (opt_.motion && !ctx.independent_blend())
     throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
                       "colour need");
-  depth_format_ = opt_.single_sample ? kDepthFormat : kDepthStencilFormat;
+  // Several samples without motion vectors, not supersampled: each sample is one opaque draw into the
+  // pass's own image, which the resolve adds to the colour target (see the header).
+  sum_opaque_ = !opt_.single_sample && opt_.supersample == 1 && !opt_.motion &&
+                opt_.color_format == VK_FORMAT_R32G32B32A32_SFLOAT;
+  opaque_ = opt_.single_sample || sum_opaque_;
+  depth_format_ = opaque_ ? kDepthFormat : kDepthStencilFormat;
   if (!ctx.format_supports(depth_format_, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
     throw VulkanError(ctx.info().name + " cannot render depth to " +
-                      (opt_.single_sample ? "D32_SFLOAT"
-                                          : "D32_SFLOAT_S8_UINT (depth and the stencil accumulated samples need)"));
+                      (opaque_ ? "D32_SFLOAT" : "D32_SFLOAT_S8_UINT (depth and the stencil blended samples need)"));
   render_pass_ = make_render_pass(ctx, opt_.color_format, depth_format_, opt_.motion);
 
   std::vector<VkDescriptorSetLayoutBinding> bindings = {
@@ -233,7 +237,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
     CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment, sky_defines);
     ShaderModule svm = make_shader_module(ctx, svs.spirv), sfm = make_shader_module(ctx, sfs.spirv);
     sky_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), svm.get(), sfm.get(),
-                                           opt_.single_sample ? Draw::SkyOpaque : Draw::Sky, opt_.motion);
+                                           opaque_ ? Draw::SkyOpaque : Draw::Sky, opt_.motion);
   }
 
   frame_ubo_ = Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -249,7 +253,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   write_image_descriptor(ctx, descriptors_.set, 2, scene.env_map().view(), scene.env_sampler(),
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 
-  if (opt_.supersample > 1) {
+  if (opt_.supersample > 1 || sum_opaque_) {
     std::vector<VkDescriptorSetLayoutBinding> db = {
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
@@ -267,7 +271,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
 }
 
 void SurfacePass::declare(PassIO& io) const {
-  if (opt_.supersample > 1) {  // the box filter writes the colour target; the rest is the pass's own
+  if (opt_.supersample > 1 || sum_opaque_) {  // the resolve writes the colour target; the rest is the pass's own
     io.write(opt_.color_target, opt_.color_format, TargetUse::Storage);
     return;
   }
@@ -282,7 +286,7 @@ void SurfacePass::setup(const TargetSet& t) {
   height_ = t.height();
   const int f = opt_.supersample;
   std::vector<VkImageView> views;
-  if (f > 1) {
+  if (f > 1 || sum_opaque_) {
     const uint32_t hw = uint32_t(width_ * f), hh = uint32_t(height_ * f);
     hi_color_ = Image2D(ctx_, hw, hh, opt_.color_format,
                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
@@ -351,7 +355,7 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
   rb.pClearValues = clears;
   VkViewport viewport{0, 0, float(rw), float(rh), 0, 1};
   VkRect2D scissor{{0, 0}, {rw, rh}};
-  if (f > 1) {
+  if (f > 1 || sum_opaque_) {
     // The pass's own images: after last frame's box filter read the colour and
     // its depth tests used the depth, their old contents are dropped.
     transition(cmd, hi_color_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -368,13 +372,18 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
   // surface, or the sky wherever depth is still the cleared far plane (it tests
   // LESS_OR_EQUAL at z = 1). Clearing colour and motion first would only cost
   // time (on lavapipe 3.7 ms of a 1280x720 frame, 14.0 -> 10.2 ms in the bench's
-  // floor); accumulated samples, and frames without sky, start from the clear.
-  const bool clear_colour = !(opt_.single_sample && opt_.sky);
+  // floor); accumulated samples, and frames without sky, start from the clear
+  // (each opaque sample of a sum its own).
+  const bool clear_colour = !(opaque_ && opt_.sky);
   VkDeviceSize zero_offset = 0;
   VkBuffer vb = scene_.vertices().handle();
   for (size_t i = 0; i < in.samples.size(); ++i) {
+    if (sum_opaque_ && i > 0)  // the resolve has read the last sample: this one overwrites it
+      transition(cmd, hi_color_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
     vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
-    if (i == 0 && clear_colour) {  // the accumulation starts from zero; motion from "no surface"
+    if ((i == 0 || sum_opaque_) && clear_colour) {  // the accumulation starts from zero; motion from "no surface"
       VkClearAttachment ca[2] = {};
       ca[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
       ca[0].colorAttachment = 0;
@@ -391,7 +400,7 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
                        sizeof(SamplePush), &in.samples[i]);
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero_offset);
     vkCmdBindIndexBuffer(cmd, scene_.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-    if (!opt_.single_sample) {
+    if (!opaque_) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.get());
       vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
     }
@@ -402,25 +411,37 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
       vkCmdDraw(cmd, 3, 1, 0, 0);
     }
     vkCmdEndRenderPass(cmd);
+    if (sum_opaque_) resolve(cmd, i > 0);
   }
-  if (f > 1) {  // box filter into the colour target (which the graph put in GENERAL for us)
-    transition(cmd, hi_color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    const int32_t push[4] = {width_, height_, f, 0};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_pipeline_.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_layout_.get(), 0, 1, &down_set_.set, 0,
-                            nullptr);
-    vkCmdPushConstants(cmd, down_layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
-    vkCmdDispatch(cmd, (uint32_t(width_) + 7) / 8, (uint32_t(height_) + 7) / 8, 1);
+  if (f > 1) resolve(cmd, false);
+}
+
+// The box filter of the pass's own colour image into the colour target (which
+// the graph put in GENERAL for us): the f x f mean, or with `add` (f = 1, a
+// sum of opaque samples) added to what the earlier samples left there.
+void SurfacePass::resolve(VkCommandBuffer cmd, bool add) {
+  transition(cmd, hi_color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+             VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+  if (add) {  // the previous resolve's writes to the colour target before this one reads them
+    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    mb.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &mb, 0,
+                         nullptr, 0, nullptr);
   }
+  const int32_t push[4] = {width_, height_, opt_.supersample, add ? 1 : 0};
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_layout_.get(), 0, 1, &down_set_.set, 0, nullptr);
+  vkCmdPushConstants(cmd, down_layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+  vkCmdDispatch(cmd, (uint32_t(width_) + 7) / 8, (uint32_t(height_) + 7) / 8, 1);
 }
 
 void SurfacePass::build_surface_pipeline(const std::vector<std::string>& defines) {
   CompiledShader fs = default_shader_compiler().compile(opt_.program.fragment, ShaderStage::Fragment, defines);
   ShaderModule fsm = make_shader_module(ctx_, fs.spirv);
   surface_pipeline_ = make_graphics_pipeline(ctx_, layout_.get(), render_pass_.get(), vertex_module_.get(), fsm.get(),
-                                             opt_.single_sample ? Draw::ShadeOpaque : Draw::Shade, opt_.motion);
+                                             opaque_ ? Draw::ShadeOpaque : Draw::Shade, opt_.motion);
 }
 
 // ---------------------------------------------------------------- SurfaceRenderer

@@ -2,13 +2,19 @@
 // (core/material/program.h) into the "color" target, RGBA32F scene-linear,
 // alpha = surface coverage. A frame is the mean of one draw per sample of
 // FrameInputs::samples (fp32 additive blending, box filter): one sample for a
-// normal frame, N jittered ones for supersampling or the reference. Each
-// sample is a depth pre-pass, then shading with depth test EQUAL and a stencil
-// test that passes one fragment per pixel, so exactly one nearest surface is
-// shaded and accumulated whatever the draw order, ties included; then (option
-// `sky`) the environment fills what no surface covers. With option
-// `single_sample` one opaque draw replaces the two (see there), and with the
-// sky on nothing is cleared first: every pixel is written once.
+// normal frame, N jittered ones for supersampling or the reference. Exactly one
+// nearest surface per pixel and sample is shaded and added, whatever the draw
+// order, ties included, in one of three ways:
+//  - option `single_sample`: one opaque draw, depth test LESS, into the colour
+//    target; with the sky on nothing is cleared first (every pixel is written
+//    once);
+//  - several samples, no motion vectors, not supersampled (SSAA): each sample
+//    the same opaque draw into the pass's own image, which a resolve
+//    (passes/downsample.comp) adds to the colour target: no depth pre-pass;
+//  - otherwise (option `supersample`, or motion with several samples): per
+//    sample a depth pre-pass, then shading with depth test EQUAL and a stencil
+//    test that passes one fragment per pixel, blended into the target.
+// Then (option `sky`) the environment fills what no surface covers.
 //
 // With option `motion` it also writes the "motion" target (RGBA32F, layout in
 // shaders/common/motion.glsl: motion vector in pixels, distance now, distance
@@ -78,12 +84,15 @@ class SurfacePass final : public Pass {
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;
   void build_surface_pipeline(const std::vector<std::string>& fragment_defines);
+  void resolve(VkCommandBuffer cmd, bool add);
 
   ShaderModule vertex_module_;
   std::vector<std::string> fragment_defines_;  // without the lighting constants
   std::string lighting_define_;                // what the surface pipeline was built with (frame_lighting_constants)
   Pipeline depth_pipeline_, surface_pipeline_, sky_pipeline_;
   VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;  // with a stencil when samples accumulate
+  bool sum_opaque_ = false;  // several samples, each drawn opaque and added by the resolve
+  bool opaque_ = false;      // one opaque draw per sample (single_sample or sum_opaque_)
   Buffer frame_ubo_, material_ubo_;
   DescriptorSet descriptors_;
   int width_ = 0, height_ = 0;

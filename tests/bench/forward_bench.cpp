@@ -66,7 +66,8 @@ const char* kScene = R"({
 struct Case {
   std::string name;
   core::MaterialProgram program;
-  bool single_sample = true;  // one opaque draw (as the runner renders 1-spp frames)
+  bool single_sample = true;  // one opaque draw (as the runner renders 1-spp frames); false: SSAA's path for
+                              // several samples, drawn opaque into the pass's image and added by a resolve
   bool coarse = false;        // the same surface with the fewest triangles (what the floor is without geometry)
 };
 
@@ -127,8 +128,8 @@ int main(int argc, char** argv) {
   std::vector<Case> cases;
   cases.push_back({"floor (geometry and passes only)", core::geometry_only_program()});
   cases.push_back({"full (close+far+transition)", sand(base, 0.0, 1e30)});
-  cases.push_back({"floor, depth pre-pass + EQUAL", core::geometry_only_program(), false});
-  cases.push_back({"full, depth pre-pass + EQUAL", sand(base, 0.0, 1e30), false});
+  cases.push_back({"floor, as one sample of SSAA", core::geometry_only_program(), false});
+  cases.push_back({"full, as one sample of SSAA", sand(base, 0.0, 1e30), false});
   cases.push_back({"as the scene needs", core::sand_program(base, data.range, core::ProgramRole::Variant)});
   core::SandParams no_t = base;
   no_t.T = 0;

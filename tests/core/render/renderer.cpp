@@ -77,6 +77,16 @@ core::CameraState sphere_camera() {
   return cam;
 }
 
+// One sample per jitter offset (pixels), each weighted 1/N.
+std::vector<core::SamplePush> jittered_samples(const core::CameraState& cam, int w, int h,
+                                               const std::vector<glm::vec2>& offsets) {
+  std::vector<core::SamplePush> samples;
+  for (size_t i = 0; i < offsets.size(); ++i)
+    samples.push_back({core::projection(cam, w, h, offsets[i]) * core::view_matrix(cam),
+                       {offsets[i].x, offsets[i].y, 1.0f / float(offsets.size()), float(i)}});
+  return samples;
+}
+
 }  // namespace
 
 TEST(Renderer, ReadbackOfOddSizeIsExact) {
@@ -200,11 +210,8 @@ TEST(Renderer, OnlyTheNearestOfOverlappingSurfacesIsAccumulated) {
   glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
   glm::dmat4 inv = glm::inverse(glm::dmat4(vp));
   for (int n : {1, 3}) {
-    std::vector<core::SamplePush> samples;
-    auto offs = n == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(n, 3u);
-    for (size_t i = 0; i < offs.size(); ++i)
-      samples.push_back({core::projection(cam, w, h, offs[i]) * core::view_matrix(cam),
-                         {offs[i].x, offs[i].y, 1.0f / float(offs.size()), float(i)}});
+    const std::vector<core::SamplePush> samples = jittered_samples(
+        cam, w, h, n == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(n, 3u));
     auto out = pass.render(uniforms_for(vp, w, h, cam.position), samples);
     int interior = 0;
     for (int y = 0; y < h; ++y)
@@ -334,8 +341,10 @@ TEST(Renderer, CoincidentSurfacesAccumulateOneFragmentPerSample) {
   // Two identical shells (layer spacing 0): every covered pixel has two
   // fragments at exactly the same depth. Depth test EQUAL alone would shade
   // both and add them (alpha 2); each sample must add exactly one, in every
-  // accumulating mode (one pass per sample, supersampled) and with one opaque
-  // sample, with the sky on so that it must not add onto a surface either.
+  // mode of the pass: one opaque sample, opaque samples summed by the resolve
+  // (one and four), and blended samples (pre-pass, EQUAL and stencil: with
+  // motion vectors, and supersampled), with the sky on so that it must not add
+  // onto a surface either.
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const int w = 64, h = 48;
@@ -346,20 +355,19 @@ TEST(Renderer, CoincidentSurfacesAccumulateOneFragmentPerSample) {
   struct Mode {
     const char* name;
     int samples, supersample;
-    bool single;
+    bool single, motion;
   };
-  for (Mode m : {Mode{"one opaque sample", 1, 1, true}, Mode{"one accumulated sample", 1, 1, false},
-                 Mode{"4 samples", 4, 1, false}, Mode{"supersampled 2x2", 1, 2, false}}) {
+  for (Mode m : {Mode{"one opaque sample", 1, 1, true, false}, Mode{"one summed sample", 1, 1, false, false},
+                 Mode{"4 summed samples", 4, 1, false, false}, Mode{"4 blended samples", 4, 1, false, true},
+                 Mode{"supersampled 2x2", 1, 2, false, false}}) {
     core::SurfacePassOptions o;
-    o.program.fragment = "tests/analytic.frag";
+    o.program.fragment = "tests/position.frag";  // alpha = weight; also writes motion
+    o.motion = m.motion;
     o.single_sample = m.single;
     o.supersample = m.supersample;
     core::SurfaceRenderer pass(ctx, scene, w, h, o);
-    std::vector<core::SamplePush> samples;
-    auto offs = m.samples == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(2, 5u);
-    for (size_t i = 0; i < offs.size(); ++i)
-      samples.push_back({core::projection(cam, w, h, offs[i]) * core::view_matrix(cam),
-                         {offs[i].x, offs[i].y, 1.0f / float(offs.size()), float(i)}});
+    const std::vector<core::SamplePush> samples = jittered_samples(
+        cam, w, h, m.samples == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(2, 5u));
     auto out = pass.render(uniforms_for(vp, w, h, cam.position), samples);
     int covered = 0, doubled = 0;
     for (int y = 0; y < h; ++y)
@@ -371,4 +379,37 @@ TEST(Renderer, CoincidentSurfacesAccumulateOneFragmentPerSample) {
     EXPECT_GT(covered, w * h / 8) << m.name;
     EXPECT_EQ(doubled, 0) << m.name << ": pixels that accumulated both coincident fragments";
   }
+}
+
+TEST(Renderer, SumOfOpaqueSamplesEqualsBlendedAccumulation) {
+  // Several samples without motion vectors are each drawn opaque into the
+  // pass's own image and added to the colour target by the resolve; with
+  // motion vectors they are blended after a depth pre-pass (EQUAL + stencil).
+  // Both add the same fragments in the same order: equal colour, bit for bit,
+  // on the layered sphere (four surfaces behind most pixels), sky on.
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const int w = 96, h = 64;
+  core::Mesh mesh = layered_sphere(96, 0.3f);
+  core::SceneGpu scene(ctx, mesh, constant_env(0.25f));
+  const core::CameraState cam = sphere_camera();
+  glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
+  const std::vector<core::SamplePush> samples = jittered_samples(cam, w, h, core::stratified_offsets(3, 7u));
+  core::SurfacePassOptions summed;
+  summed.program.fragment = "tests/position.frag";  // colour = world position (it also writes motion)
+  core::SurfacePassOptions blended = summed;
+  blended.motion = true;
+  const core::FrameUniforms u = uniforms_for(vp, w, h, cam.position);
+  const Image a = color(core::SurfaceRenderer(ctx, scene, w, h, summed).render(u, samples));
+  const Image b = color(core::SurfaceRenderer(ctx, scene, w, h, blended).render(u, samples));
+  ASSERT_EQ(a.data.size(), b.data.size());
+  size_t differing = 0, covered = 0, sky = 0;
+  for (size_t i = 0; i < a.data.size(); ++i) differing += std::memcmp(&a.data[i], &b.data[i], sizeof(float)) != 0;
+  for (size_t px = 0; px < a.pixel_count(); ++px) {
+    covered += a.data[px * 4 + 3] > 0.0f;
+    sky += a.data[px * 4 + 3] < 1.0f && a.data[px * 4] > 0.0f;
+  }
+  EXPECT_EQ(differing, 0u);
+  EXPECT_GT(covered, a.pixel_count() / 8);
+  EXPECT_GT(sky, 0u) << "some pixels must mix surface and sky samples or show sky";
 }
