@@ -9,8 +9,9 @@
 //    target; with the sky on nothing is cleared first (every pixel is written
 //    once);
 //  - several samples, no motion vectors, not supersampled (SSAA): each sample
-//    the same opaque draw into the pass's own image, which a resolve
-//    (passes/downsample.comp) adds to the colour target: no depth pre-pass;
+//    the same opaque draw into the pass's own image, which a full-screen draw
+//    (passes/add_sample.frag) adds to the colour target by blending: no depth
+//    pre-pass;
 //  - otherwise (option `supersample`, or motion with several samples): per
 //    sample a depth pre-pass, then shading with depth test EQUAL and a stencil
 //    test that passes one fragment per pixel, blended into the target.
@@ -84,7 +85,8 @@ class SurfacePass final : public Pass {
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;
   void build_surface_pipeline(const std::vector<std::string>& fragment_defines);
-  void resolve(VkCommandBuffer cmd, bool add);
+  void resolve(VkCommandBuffer cmd);
+  void add_sample(VkCommandBuffer cmd, bool add, const VkViewport& viewport, const VkRect2D& scissor);
 
   ShaderModule vertex_module_;
   std::vector<std::string> fragment_defines_;  // without the lighting constants
@@ -103,6 +105,10 @@ class SurfacePass final : public Pass {
   Pipeline down_pipeline_;
   Sampler down_sampler_;
   DescriptorSet down_set_;
+  // a sum of opaque samples: the pass that adds each to the colour target
+  RenderPass add_render_pass_;
+  Framebuffer add_framebuffer_;
+  Pipeline add_pipeline_[2];  // write (the first sample), add
   bool hi_written_ = false;  // the high-resolution images were used by an earlier frame
 };
 
