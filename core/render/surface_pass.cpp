@@ -26,50 +26,6 @@ VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShader
   return s;
 }
 
-// The fixed-function state every draw of the pass shares: triangle lists, one
-// dynamic viewport and scissor, no culling (surfaces are seen from both sides:
-// grazing, below the plane), one sample per pixel. It points into itself, so
-// it is neither copied nor moved.
-struct FixedState {
-  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  VkDynamicState dynamic[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-
-  FixedState() {
-    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    vp.viewportCount = 1;
-    vp.scissorCount = 1;
-    dyn.dynamicStateCount = 2;
-    dyn.pDynamicStates = dynamic;
-    rs.polygonMode = VK_POLYGON_MODE_FILL;
-    rs.cullMode = VK_CULL_MODE_NONE;
-    rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    rs.lineWidth = 1.0f;
-    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  }
-  FixedState(const FixedState&) = delete;
-  FixedState& operator=(const FixedState&) = delete;
-  void apply(VkGraphicsPipelineCreateInfo& ci) const {
-    ci.pInputAssemblyState = &ia;
-    ci.pViewportState = &vp;
-    ci.pRasterizationState = &rs;
-    ci.pMultisampleState = &ms;
-    ci.pDynamicState = &dyn;
-  }
-};
-
-Pipeline create_pipeline(const VkContext& ctx, VkGraphicsPipelineCreateInfo& ci, VkPipelineLayout layout,
-                         VkRenderPass rp) {
-  ci.layout = layout;
-  ci.renderPass = rp;
-  VkPipeline p;
-  vk_check(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p), "vkCreateGraphicsPipelines");
-  return Pipeline(ctx.device(), p);
-}
-
 // The three draws of one sample. Accumulating samples by additive blending is
 // only correct if each pixel receives exactly one fragment per sample, so the
 // surface is first drawn depth-only, then shaded with depth test EQUAL (only
@@ -102,7 +58,7 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
     vi.vertexAttributeDescriptionCount = 4;
     vi.pVertexAttributeDescriptions = attrs;
   }
-  const FixedState fixed;
+  const FixedFunctionState fixed;
   VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = VK_TRUE;
   const bool writes_depth = draw == Draw::DepthPrepass || draw == Draw::ShadeOpaque;
@@ -143,40 +99,22 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   fixed.apply(ci);
   ci.pDepthStencilState = &ds;
   ci.pColorBlendState = &cb;
-  return create_pipeline(ctx, ci, layout, rp);
+  return create_graphics_pipeline(ctx, ci, layout, rp);
 }
 
 // Colour (and motion) attachments are loaded and kept: samples accumulate
 // across one render-pass instance per sample; the pass clears them itself in
 // the first instance. The frame graph puts every attachment in its attachment
-// layout before the pass and expects it there after. Without a depth format:
-// the colour target alone (the pass that adds an opaque sample to it).
+// layout before the pass and expects it there after.
 RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, VkFormat depth_format, bool motion) {
   std::vector<VkAttachmentDescription> att;
-  auto colour = [](VkFormat f) {
-    VkAttachmentDescription a{};
-    a.format = f;
-    a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = a.finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    return a;
-  };
-  att.push_back(colour(color_format));
-  if (motion) att.push_back(colour(kMotionFormat));
-  const bool with_depth = depth_format != VK_FORMAT_UNDEFINED;  // none: the pass that adds a sample
-  VkAttachmentDescription depth{};
-  depth.format = depth_format;
-  depth.samples = VK_SAMPLE_COUNT_1_BIT;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.stencilLoadOp = (aspects_of(depth_format) & VK_IMAGE_ASPECT_STENCIL_BIT) ? VK_ATTACHMENT_LOAD_OP_CLEAR
-                                                                               : VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.initialLayout = depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  if (with_depth) att.push_back(depth);
+  att.push_back(kept_attachment(color_format, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD));
+  if (motion)
+    att.push_back(kept_attachment(kMotionFormat, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD));
+  VkAttachmentDescription depth =
+      kept_attachment(depth_format, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
+  if (aspects_of(depth_format) & VK_IMAGE_ASPECT_STENCIL_BIT) depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  att.push_back(depth);
   VkAttachmentReference color_refs[2] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
                                          {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
   VkAttachmentReference depth_ref{uint32_t(att.size() - 1), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
@@ -184,7 +122,7 @@ RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, VkForma
   sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   sub.colorAttachmentCount = motion ? 2 : 1;
   sub.pColorAttachments = color_refs;
-  sub.pDepthStencilAttachment = with_depth ? &depth_ref : nullptr;
+  sub.pDepthStencilAttachment = &depth_ref;
   // Orders this sample's blending and depth clear after the previous sample's
   // writes (the instances follow each other in one command buffer).
   VkSubpassDependency dep{};
@@ -196,42 +134,7 @@ RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, VkForma
   dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  ci.attachmentCount = uint32_t(att.size());
-  ci.pAttachments = att.data();
-  ci.subpassCount = 1;
-  ci.pSubpasses = &sub;
-  ci.dependencyCount = 1;
-  ci.pDependencies = &dep;
-  VkRenderPass rp;
-  vk_check(vkCreateRenderPass(ctx.device(), &ci, nullptr, &rp), "vkCreateRenderPass");
-  return RenderPass(ctx.device(), rp);
-}
-
-// A full-screen triangle writing the sample's pixels: blended ONE + ONE onto
-// the target (`add`), or written (the first sample).
-Pipeline make_add_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
-                           VkShaderModule fs, bool add) {
-  VkPipelineShaderStageCreateInfo stages[] = {stage_info(VK_SHADER_STAGE_VERTEX_BIT, vs),
-                                              stage_info(VK_SHADER_STAGE_FRAGMENT_BIT, fs)};
-  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  const FixedState fixed;
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.blendEnable = add ? VK_TRUE : VK_FALSE;
-  blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
-  blend.colorWriteMask = 0xf;
-  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = 1;
-  cb.pAttachments = &blend;
-  VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  ci.stageCount = 2;
-  ci.pStages = stages;
-  ci.pVertexInputState = &vi;
-  fixed.apply(ci);
-  ci.pColorBlendState = &cb;
-  return create_pipeline(ctx, ci, layout, rp);
+  return create_render_pass(ctx, att, sub, dep);
 }
 
 }  // namespace
@@ -327,12 +230,20 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
     down_set_layout_ = make_set_layout(ctx, ab);
     down_layout_ = make_pipeline_layout(ctx, down_set_layout_.get(), 0, VK_SHADER_STAGE_FRAGMENT_BIT);
-    add_render_pass_ = make_render_pass(ctx, opt_.color_format, VK_FORMAT_UNDEFINED, false);
+    add_render_pass_ = make_color_render_pass(ctx, {opt_.color_format}, VK_ATTACHMENT_LOAD_OP_LOAD);
     CompiledShader avs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
     CompiledShader afs = sc.compile("passes/add_sample.frag", ShaderStage::Fragment);
     ShaderModule avm = make_shader_module(ctx, avs.spirv), afm = make_shader_module(ctx, afs.spirv);
-    add_pipeline_[0] = make_add_pipeline(ctx, down_layout_.get(), add_render_pass_.get(), avm.get(), afm.get(), false);
-    add_pipeline_[1] = make_add_pipeline(ctx, down_layout_.get(), add_render_pass_.get(), avm.get(), afm.get(), true);
+    for (int add = 0; add < 2; ++add) {  // the first sample is written, the others added (ONE + ONE)
+      VkPipelineColorBlendAttachmentState blend{};
+      blend.blendEnable = add ? VK_TRUE : VK_FALSE;
+      blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+      blend.colorWriteMask = 0xf;
+      add_pipeline_[add] =
+          make_fullscreen_pipeline(ctx, down_layout_.get(), add_render_pass_.get(), avm.get(), afm.get(), {blend});
+    }
     down_set_ = make_descriptor_set(ctx, down_set_layout_.get(), ab);
   }
 }

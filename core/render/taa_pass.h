@@ -1,4 +1,4 @@
-// The TAA resolve pass (compute, shaders/passes/taa.comp): blends this frame's
+// The TAA resolve pass (a full-screen fragment pass, shaders/passes/taa.frag): blends this frame's
 // jittered colour with the reprojected history that the frame graph keeps
 // across frames. Reads "color" and "motion" (the surface pass with motion on);
 // keeps "taa.history" (rgb = resolved colour, a = the surface distance at the
@@ -34,6 +34,8 @@ class TaaPass final : public Pass {
   TaaSettings s_;
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;
+  RenderPass render_pass_;
+  Framebuffer framebuffers_[2];  // one per history slot parity
   Pipeline pipeline_;
   Sampler sampler_;
   DescriptorSet sets_[2];  // one per history slot parity

@@ -93,4 +93,105 @@ void write_image_descriptor(const VkContext& ctx, VkDescriptorSet set, uint32_t 
   vkUpdateDescriptorSets(ctx.device(), 1, &w, 0, nullptr);
 }
 
+FixedFunctionState::FixedFunctionState() {
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  vp.viewportCount = 1;
+  vp.scissorCount = 1;
+  dyn.dynamicStateCount = 2;
+  dyn.pDynamicStates = dynamic;
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = VK_CULL_MODE_NONE;
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+}
+
+void FixedFunctionState::apply(VkGraphicsPipelineCreateInfo& ci) const {
+  ci.pInputAssemblyState = &ia;
+  ci.pViewportState = &vp;
+  ci.pRasterizationState = &rs;
+  ci.pMultisampleState = &ms;
+  ci.pDynamicState = &dyn;
+}
+
+Pipeline create_graphics_pipeline(const VkContext& ctx, VkGraphicsPipelineCreateInfo& ci, VkPipelineLayout layout,
+                                  VkRenderPass rp) {
+  ci.layout = layout;
+  ci.renderPass = rp;
+  VkPipeline p;
+  vk_check(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p), "vkCreateGraphicsPipelines");
+  return Pipeline(ctx.device(), p);
+}
+
+Pipeline make_fullscreen_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
+                                  VkShaderModule fs, const std::vector<VkPipelineColorBlendAttachmentState>& blends) {
+  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vs;
+  stages[0].pName = "main";
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = fs;
+  stages[1].pName = "main";
+  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  const FixedFunctionState fixed;
+  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  cb.attachmentCount = uint32_t(blends.size());
+  cb.pAttachments = blends.data();
+  VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  ci.stageCount = 2;
+  ci.pStages = stages;
+  ci.pVertexInputState = &vi;
+  fixed.apply(ci);
+  ci.pColorBlendState = &cb;
+  return create_graphics_pipeline(ctx, ci, layout, rp);
+}
+
+VkAttachmentDescription kept_attachment(VkFormat format, VkImageLayout layout, VkAttachmentLoadOp load) {
+  VkAttachmentDescription a{};
+  a.format = format;
+  a.samples = VK_SAMPLE_COUNT_1_BIT;
+  a.loadOp = load;
+  a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  a.initialLayout = a.finalLayout = layout;
+  return a;
+}
+
+RenderPass create_render_pass(const VkContext& ctx, const std::vector<VkAttachmentDescription>& attachments,
+                              const VkSubpassDescription& subpass, const VkSubpassDependency& dependency) {
+  VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  ci.attachmentCount = uint32_t(attachments.size());
+  ci.pAttachments = attachments.data();
+  ci.subpassCount = 1;
+  ci.pSubpasses = &subpass;
+  ci.dependencyCount = 1;
+  ci.pDependencies = &dependency;
+  VkRenderPass rp;
+  vk_check(vkCreateRenderPass(ctx.device(), &ci, nullptr, &rp), "vkCreateRenderPass");
+  return RenderPass(ctx.device(), rp);
+}
+
+RenderPass make_color_render_pass(const VkContext& ctx, const std::vector<VkFormat>& formats, VkAttachmentLoadOp load) {
+  std::vector<VkAttachmentDescription> att;
+  std::vector<VkAttachmentReference> refs;
+  for (VkFormat f : formats) {
+    refs.push_back({uint32_t(att.size()), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
+    att.push_back(kept_attachment(f, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, load));
+  }
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = uint32_t(refs.size());
+  sub.pColorAttachments = refs.data();
+  VkSubpassDependency dep{};
+  dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+  dep.dstSubpass = 0;
+  dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  return create_render_pass(ctx, att, sub, dep);
+}
+
 }  // namespace glintlab::core

@@ -1,4 +1,4 @@
-// Stress cases of the TAA resolve (core::TaaPass, shaders/passes/taa.comp) in
+// Stress cases of the TAA resolve (core::TaaPass, shaders/passes/taa.frag) in
 // a frame graph whose surface pass runs shaders/tests/taa_stress.frag: the
 // colour and the motion vectors the resolve reads are set per frame, so the
 // history can be filled with huge values, the motion can point off-screen or

@@ -15,15 +15,20 @@
 //   4. out = mix(history, current, alpha'), alpha' from TAA_FEEDBACK (and the
 //      anti-flicker guard), mapped back to linear radiance, clamped to >= 0.
 // Inputs use texelFetch only (exact, no filtering hardware needed).
-layout(local_size_x = TAA_GROUP_X, local_size_y = TAA_GROUP_Y) in;  // core/render/taa_pass.cpp chooses
+// A full-screen fragment pass (passes/fullscreen.vert): one fragment per pixel
+// writes the resolved colour, the history and (anti_flicker) the lumas. On
+// llvmpipe a compute pass costs about 12 ns a pixel before it does any work
+// (core/render/taa_pass.cpp).
 
 layout(set = 0, binding = 0) uniform sampler2D color_tex;     // this frame, jittered, RGBA32F
 layout(set = 0, binding = 1) uniform sampler2D motion_tex;    // common/motion.glsl layout
 layout(set = 0, binding = 2) uniform sampler2D history_tex;   // last frame's resolve: rgb, a = distance
 layout(set = 0, binding = 3) uniform sampler2D luma_tex;      // anti-flicker: last lumas
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D out_img;
-layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D history_out;
-layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D luma_out;
+layout(location = 0) out vec4 out_color;    // taa.color
+layout(location = 1) out vec4 out_history;  // taa.history (this frame's slot)
+#if TAA_ANTI_FLICKER
+layout(location = 2) out vec4 out_luma;     // taa.luma (this frame's slot)
+#endif
 
 layout(push_constant) uniform Push {
   vec4 size_alpha_gamma;  // width, height, alpha, gamma
@@ -190,8 +195,7 @@ bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
 void main() {
   g_size = ivec2(size_alpha_gamma.xy);
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, g_size))) return;
+  ivec2 p = ivec2(gl_FragCoord.xy);  // the pixel: the viewport is the image
   float alpha = size_alpha_gamma.z, gamma = size_alpha_gamma.w;
   bool valid = valid_tol.x > 0.5;
   float tol = valid_tol.y;
@@ -331,9 +335,9 @@ void main() {
 
   vec3 lin = max(hdr_inverse(max(from_space(result), vec3(0.0))), vec3(0.0));
   if (!finite3(lin)) lin = max(centre_px.rgb, vec3(0.0));
-  imageStore(out_img, p, vec4(lin, centre_px.a));
-  imageStore(history_out, p, vec4(lin, mc.z));
+  out_color = vec4(lin, centre_px.a);
+  out_history = vec4(lin, mc.z);
 #if TAA_ANTI_FLICKER
-  imageStore(luma_out, p, lumas);
+  out_luma = lumas;
 #endif
 }
