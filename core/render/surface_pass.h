@@ -19,9 +19,10 @@
 //
 // With option `motion` it also writes the "motion" target (RGBA32F, layout in
 // shaders/common/motion.glsl: motion vector in pixels, distance now, distance
-// in the previous frame) from the last sample's nearest surface, and the
-// "depth" target (D32, or D32S8 when samples accumulate) is the last sample's
-// depth buffer.
+// in the previous frame) from the last sample's nearest surface. Where the
+// pass draws into the graph's targets (one opaque sample, or blended samples
+// with motion), the "depth" target (D32; D32S8 when blending) is the last
+// sample's depth buffer; summed and supersampled samples use the pass's own.
 //
 // With option `supersample` = f > 1 (the reference's many samples) it renders
 // at f times the resolution and box-filters into "color": f^2 samples per
