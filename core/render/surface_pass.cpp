@@ -153,7 +153,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
     throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
                       "colour need");
   // Several samples without motion vectors, not supersampled: each sample is one opaque draw into the
-  // pass's own image, which the resolve adds to the colour target (see the header).
+  // pass's own image, which a blended full-screen draw adds to the colour target (see the header).
   sum_opaque_ = !opt_.single_sample && opt_.supersample == 1 && !opt_.motion &&
                 opt_.color_format == VK_FORMAT_R32G32B32A32_SFLOAT;
   opaque_ = opt_.single_sample || sum_opaque_;
@@ -209,18 +209,18 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     VkSampler smp;
     vk_check(vkCreateSampler(ctx.device(), &si, nullptr, &smp), "vkCreateSampler");
-    down_sampler_ = Sampler(ctx.device(), smp);
+    resolve_sampler_ = Sampler(ctx.device(), smp);
   }
   if (opt_.supersample > 1) {  // the box filter: a compute pass
     std::vector<VkDescriptorSetLayoutBinding> db = {
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-    down_set_layout_ = make_set_layout(ctx, db);
-    down_layout_ = make_pipeline_layout(ctx, down_set_layout_.get(), 16, VK_SHADER_STAGE_COMPUTE_BIT);
+    resolve_set_layout_ = make_set_layout(ctx, db);
+    resolve_layout_ = make_pipeline_layout(ctx, resolve_set_layout_.get(), 16, VK_SHADER_STAGE_COMPUTE_BIT);
     CompiledShader cs = sc.compile("passes/downsample.comp", ShaderStage::Compute);
     ShaderModule m = make_shader_module(ctx, cs.spirv);
-    down_pipeline_ = make_compute_pipeline(ctx, down_layout_.get(), m.get());
-    down_set_ = make_descriptor_set(ctx, down_set_layout_.get(), db);
+    resolve_pipeline_ = make_compute_pipeline(ctx, resolve_layout_.get(), m.get());
+    resolve_set_ = make_descriptor_set(ctx, resolve_set_layout_.get(), db);
   }
   // The sum: a full-screen draw per sample, blending. Measured against a compute add (imageLoad +
   // imageStore) at 1280x720: 2.3-2.7 against 11-12 ms a sample (bench, "floor, as one sample of SSAA" minus
@@ -228,8 +228,8 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   if (sum_opaque_) {
     std::vector<VkDescriptorSetLayoutBinding> ab = {
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
-    down_set_layout_ = make_set_layout(ctx, ab);
-    down_layout_ = make_pipeline_layout(ctx, down_set_layout_.get(), 0, VK_SHADER_STAGE_FRAGMENT_BIT);
+    resolve_set_layout_ = make_set_layout(ctx, ab);
+    resolve_layout_ = make_pipeline_layout(ctx, resolve_set_layout_.get(), 0, VK_SHADER_STAGE_FRAGMENT_BIT);
     add_render_pass_ = make_color_render_pass(ctx, {opt_.color_format}, VK_ATTACHMENT_LOAD_OP_LOAD);
     CompiledShader avs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
     CompiledShader afs = sc.compile("passes/add_sample.frag", ShaderStage::Fragment);
@@ -242,9 +242,9 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
       blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
       blend.colorWriteMask = 0xf;
       add_pipeline_[add] =
-          make_fullscreen_pipeline(ctx, down_layout_.get(), add_render_pass_.get(), avm.get(), afm.get(), {blend});
+          make_fullscreen_pipeline(ctx, resolve_layout_.get(), add_render_pass_.get(), avm.get(), afm.get(), {blend});
     }
-    down_set_ = make_descriptor_set(ctx, down_set_layout_.get(), ab);
+    resolve_set_ = make_descriptor_set(ctx, resolve_set_layout_.get(), ab);
   }
 }
 
@@ -271,7 +271,7 @@ void SurfacePass::setup(const TargetSet& t) {
     hi_depth_ = Image2D(ctx_, hw, hh, depth_format_, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, 1,
                         aspects_of(depth_format_));
     views = {hi_color_.view(), hi_depth_.view()};
-    write_image_descriptor(ctx_, down_set_.set, 0, hi_color_.view(), down_sampler_.get(),
+    write_image_descriptor(ctx_, resolve_set_.set, 0, hi_color_.view(), resolve_sampler_.get(),
                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     if (sum_opaque_) {  // the add pass draws into the colour target
       VkImageView target = t.image(opt_.color_target).view();
@@ -288,7 +288,7 @@ void SurfacePass::setup(const TargetSet& t) {
     } else {  // the box filter writes the colour target as a storage image
       VkDescriptorImageInfo ii{VK_NULL_HANDLE, t.image(opt_.color_target).view(), VK_IMAGE_LAYOUT_GENERAL};
       VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-      w.dstSet = down_set_.set;
+      w.dstSet = resolve_set_.set;
       w.dstBinding = 1;
       w.descriptorCount = 1;
       w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
@@ -326,12 +326,12 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
     lighting[0] = in.uniforms.sun_dir;
     lighting[1] = in.uniforms.sun_L;
     std::copy(std::begin(in.uniforms.env_sh), std::end(in.uniforms.env_sh), lighting.begin() + 2);
-    std::string define = words_define("FRAME_LIGHTING_WORDS", lighting.data(), sizeof lighting);
-    if (define != lighting_define_) {
+    if (surface_pipeline_.get() == VK_NULL_HANDLE ||
+        std::memcmp(lighting.data(), built_lighting_.data(), sizeof lighting) != 0) {  // bitwise, NaN too
       std::vector<std::string> defines = fragment_defines_;
-      defines.push_back(define);
+      defines.push_back(words_define("FRAME_LIGHTING_WORDS", lighting.data(), sizeof lighting));
       build_surface_pipeline(defines);
-      lighting_define_ = std::move(define);
+      built_lighting_ = lighting;
     }
   }
   frame_ubo_.upload(&in.uniforms, sizeof in.uniforms);
@@ -426,7 +426,7 @@ void SurfacePass::add_sample(VkCommandBuffer cmd, bool add, const VkViewport& vi
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, add_pipeline_[add ? 1 : 0].get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, down_layout_.get(), 0, 1, &down_set_.set, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, resolve_layout_.get(), 0, 1, &resolve_set_.set, 0, nullptr);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRenderPass(cmd);
 }
@@ -438,9 +438,9 @@ void SurfacePass::resolve(VkCommandBuffer cmd) {
              VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   const int32_t push[4] = {width_, height_, opt_.supersample, 0};
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, down_layout_.get(), 0, 1, &down_set_.set, 0, nullptr);
-  vkCmdPushConstants(cmd, down_layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolve_pipeline_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolve_layout_.get(), 0, 1, &resolve_set_.set, 0, nullptr);
+  vkCmdPushConstants(cmd, resolve_layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
   vkCmdDispatch(cmd, (uint32_t(width_) + 7) / 8, (uint32_t(height_) + 7) / 8, 1);
 }
 

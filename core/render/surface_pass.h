@@ -35,6 +35,7 @@
 #include "core/render/scene_gpu.h"
 #include "core/vk/pipeline.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -91,21 +92,23 @@ class SurfacePass final : public Pass {
 
   ShaderModule vertex_module_;
   std::vector<std::string> fragment_defines_;  // without the lighting constants
-  std::string lighting_define_;                // what the surface pipeline was built with (frame_lighting_constants)
+  std::array<glm::vec4, 11> built_lighting_{};  // what the surface pipeline was built with (frame_lighting_constants)
   Pipeline depth_pipeline_, surface_pipeline_, sky_pipeline_;
   VkFormat depth_format_ = VK_FORMAT_D32_SFLOAT;  // with a stencil when samples accumulate
-  bool sum_opaque_ = false;  // several samples, each drawn opaque and added by the resolve
+  bool sum_opaque_ = false;  // several samples, each drawn opaque and added by a blended draw
   bool opaque_ = false;      // one opaque draw per sample (single_sample or sum_opaque_)
   Buffer frame_ubo_, material_ubo_;
   DescriptorSet descriptors_;
   int width_ = 0, height_ = 0;
-  // supersample > 1: the high-resolution images and the box filter
+  // supersample > 1 or a sum of opaque samples: the pass's own images (at f
+  // times the resolution), and what reads the colour one into the target (the
+  // box filter's compute pipeline, or the add pass's set and layout)
   Image2D hi_color_, hi_depth_;
-  DescriptorSetLayout down_set_layout_;
-  PipelineLayout down_layout_;
-  Pipeline down_pipeline_;
-  Sampler down_sampler_;
-  DescriptorSet down_set_;
+  DescriptorSetLayout resolve_set_layout_;
+  PipelineLayout resolve_layout_;
+  Pipeline resolve_pipeline_;
+  Sampler resolve_sampler_;
+  DescriptorSet resolve_set_;
   // a sum of opaque samples: the pass that adds each to the colour target
   RenderPass add_render_pass_;
   Framebuffer add_framebuffer_;

@@ -56,26 +56,37 @@ core::SurfacePassOptions surface_options(const std::string& fragment) {
 
 const Image& color(const core::FrameResult& r) { return r.images.at("color"); }
 
-// Two concentric sphere shells (radius 1 and 1 - spacing) and a camera that
-// sees the outer one whole: four surfaces behind most pixels, or two
+// Two concentric sphere shells (radius 1 and 1 - spacing) on the device under
+// a constant sky, and a camera that sees the outer one whole with its
+// view-projection at w x h: four surfaces behind most pixels, or two
 // coincident ones with spacing 0.
-core::Mesh layered_sphere(int tessellation, float spacing) {
-  core::MeshSpec spec;
-  spec.type = "sphere";
-  spec.size = 2.0f;  // radius 1
-  spec.tessellation = tessellation;
-  spec.layers = 2;
-  spec.layer_spacing = spacing;
-  return core::build_mesh(spec);
-}
-
-core::CameraState sphere_camera() {
+struct LayeredSphere {
+  core::Mesh mesh;
+  core::SceneGpu scene;
   core::CameraState cam;
-  cam.position = {0.4f, 0.9f, 3.2f};
-  cam.target = {0.0f, 0.0f, 0.0f};
-  cam.fov_y_deg = 50.0f;
-  return cam;
-}
+  glm::mat4 vp;
+
+  LayeredSphere(core::VkContext& ctx, int tessellation, float spacing, float sky, int w, int h)
+      : mesh(shells(tessellation, spacing)), scene(ctx, mesh, constant_env(sky)), cam(camera()),
+        vp(core::projection(cam, w, h) * core::view_matrix(cam)) {}
+
+  static core::Mesh shells(int tessellation, float spacing) {
+    core::MeshSpec spec;
+    spec.type = "sphere";
+    spec.size = 2.0f;  // radius 1
+    spec.tessellation = tessellation;
+    spec.layers = 2;
+    spec.layer_spacing = spacing;
+    return core::build_mesh(spec);
+  }
+  static core::CameraState camera() {
+    core::CameraState c;
+    c.position = {0.4f, 0.9f, 3.2f};
+    c.target = {0.0f, 0.0f, 0.0f};
+    c.fov_y_deg = 50.0f;
+    return c;
+  }
+};
 
 // One sample per jitter offset (pixels), each weighted 1/N.
 std::vector<core::SamplePush> jittered_samples(const core::CameraState& cam, int w, int h,
@@ -203,16 +214,13 @@ TEST(Renderer, OnlyTheNearestOfOverlappingSurfacesIsAccumulated) {
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const int w = 96, h = 64;
-  core::Mesh mesh = layered_sphere(192, 0.3f);  // inner shell radius 0.7
-  core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  core::SurfaceRenderer pass(ctx, scene, w, h, surface_options("tests/analytic.frag"));
-  const core::CameraState cam = sphere_camera();
-  glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
-  glm::dmat4 inv = glm::inverse(glm::dmat4(vp));
+  const LayeredSphere s(ctx, 192, 0.3f, 0.0f, w, h);  // inner shell radius 0.7
+  core::SurfaceRenderer pass(ctx, s.scene, w, h, surface_options("tests/analytic.frag"));
+  glm::dmat4 inv = glm::inverse(glm::dmat4(s.vp));
   for (int n : {1, 3}) {
     const std::vector<core::SamplePush> samples = jittered_samples(
-        cam, w, h, n == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(n, 3u));
-    auto out = pass.render(uniforms_for(vp, w, h, cam.position), samples);
+        s.cam, w, h, n == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(n, 3u));
+    auto out = pass.render(uniforms_for(s.vp, w, h, s.cam.position), samples);
     int interior = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
@@ -247,26 +255,23 @@ TEST(Renderer, SupersampledPassEqualsOnePassPerSample) {
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const int w = 96, h = 64, f = 3;
-  core::Mesh mesh = layered_sphere(192, 0.3f);
-  core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  const core::CameraState cam = sphere_camera();
-  glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
-  core::FrameUniforms uniforms = uniforms_for(vp, w, h, cam.position);
+  const LayeredSphere s(ctx, 192, 0.3f, 0.0f, w, h);
+  core::FrameUniforms uniforms = uniforms_for(s.vp, w, h, s.cam.position);
 
   core::SurfacePassOptions ss_opt = surface_options("tests/analytic.frag");
   ss_opt.supersample = f;
-  core::SurfaceRenderer ss_pass(ctx, scene, w, h, ss_opt);
-  auto ss = ss_pass.render(uniforms, {core::SamplePush{vp, {0.0f, 0.0f, 1.0f, 0.0f}}});
+  core::SurfaceRenderer ss_pass(ctx, s.scene, w, h, ss_opt);
+  auto ss = ss_pass.render(uniforms, {core::SamplePush{s.vp, {0.0f, 0.0f, 1.0f, 0.0f}}});
 
   // The high-resolution pixel centres of one low-resolution pixel, as jitters.
   std::vector<core::SamplePush> samples;
   for (int j = 0; j < f; ++j)
     for (int i = 0; i < f; ++i) {
       glm::vec2 o((i + 0.5f) / f - 0.5f, (j + 0.5f) / f - 0.5f);
-      samples.push_back({core::projection(cam, w, h, o) * core::view_matrix(cam),
+      samples.push_back({core::projection(s.cam, w, h, o) * core::view_matrix(s.cam),
                          {o.x, o.y, 1.0f / float(f * f), float(samples.size())}});
     }
-  core::SurfaceRenderer ref_pass(ctx, scene, w, h, surface_options("tests/analytic.frag"));
+  core::SurfaceRenderer ref_pass(ctx, s.scene, w, h, surface_options("tests/analytic.frag"));
   auto per_sample = ref_pass.render(uniforms, samples);
 
   int differing = 0, covered = 0;
@@ -341,17 +346,14 @@ TEST(Renderer, CoincidentSurfacesAccumulateOneFragmentPerSample) {
   // Two identical shells (layer spacing 0): every covered pixel has two
   // fragments at exactly the same depth. Depth test EQUAL alone would shade
   // both and add them (alpha 2); each sample must add exactly one, in every
-  // mode of the pass: one opaque sample, opaque samples summed by the resolve
+  // mode of the pass: one opaque sample, opaque samples summed by the add pass
   // (one and four), and blended samples (pre-pass, EQUAL and stencil: with
   // motion vectors, and supersampled), with the sky on so that it must not add
   // onto a surface either.
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const int w = 64, h = 48;
-  core::Mesh mesh = layered_sphere(64, 0.0f);
-  core::SceneGpu scene(ctx, mesh, constant_env(0.0f));
-  const core::CameraState cam = sphere_camera();
-  glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
+  const LayeredSphere s(ctx, 64, 0.0f, 0.0f, w, h);
   struct Mode {
     const char* name;
     int samples, supersample;
@@ -365,10 +367,10 @@ TEST(Renderer, CoincidentSurfacesAccumulateOneFragmentPerSample) {
     o.motion = m.motion;
     o.single_sample = m.single;
     o.supersample = m.supersample;
-    core::SurfaceRenderer pass(ctx, scene, w, h, o);
+    core::SurfaceRenderer pass(ctx, s.scene, w, h, o);
     const std::vector<core::SamplePush> samples = jittered_samples(
-        cam, w, h, m.samples == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(2, 5u));
-    auto out = pass.render(uniforms_for(vp, w, h, cam.position), samples);
+        s.cam, w, h, m.samples == 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)} : core::stratified_offsets(2, 5u));
+    auto out = pass.render(uniforms_for(s.vp, w, h, s.cam.position), samples);
     int covered = 0, doubled = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
@@ -383,25 +385,22 @@ TEST(Renderer, CoincidentSurfacesAccumulateOneFragmentPerSample) {
 
 TEST(Renderer, SumOfOpaqueSamplesEqualsBlendedAccumulation) {
   // Several samples without motion vectors are each drawn opaque into the
-  // pass's own image and added to the colour target by the resolve; with
+  // pass's own image and added to the colour target by a blended draw; with
   // motion vectors they are blended after a depth pre-pass (EQUAL + stencil).
   // Both add the same fragments in the same order: equal colour, bit for bit,
   // on the layered sphere (four surfaces behind most pixels), sky on.
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const int w = 96, h = 64;
-  core::Mesh mesh = layered_sphere(96, 0.3f);
-  core::SceneGpu scene(ctx, mesh, constant_env(0.25f));
-  const core::CameraState cam = sphere_camera();
-  glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
-  const std::vector<core::SamplePush> samples = jittered_samples(cam, w, h, core::stratified_offsets(3, 7u));
+  const LayeredSphere s(ctx, 96, 0.3f, 0.25f, w, h);
+  const std::vector<core::SamplePush> samples = jittered_samples(s.cam, w, h, core::stratified_offsets(3, 7u));
   core::SurfacePassOptions summed;
   summed.program.fragment = "tests/position.frag";  // colour = world position (it also writes motion)
   core::SurfacePassOptions blended = summed;
   blended.motion = true;
-  const core::FrameUniforms u = uniforms_for(vp, w, h, cam.position);
-  const Image a = color(core::SurfaceRenderer(ctx, scene, w, h, summed).render(u, samples));
-  const Image b = color(core::SurfaceRenderer(ctx, scene, w, h, blended).render(u, samples));
+  const core::FrameUniforms u = uniforms_for(s.vp, w, h, s.cam.position);
+  const Image a = color(core::SurfaceRenderer(ctx, s.scene, w, h, summed).render(u, samples));
+  const Image b = color(core::SurfaceRenderer(ctx, s.scene, w, h, blended).render(u, samples));
   ASSERT_EQ(a.data.size(), b.data.size());
   size_t differing = 0, covered = 0, sky = 0;
   for (size_t i = 0; i < a.data.size(); ++i) differing += std::memcmp(&a.data[i], &b.data[i], sizeof(float)) != 0;
