@@ -13,8 +13,9 @@ namespace glintlab::core {
 std::string MaterialProgram::cache_key() const {
   ContentHash h;
   // v2: accumulating passes add one fragment per pixel and sample where
-  // surfaces tie at the nearest depth (before, each of them)
-  h.add(std::string_view("material-program-v2"))
+  // surfaces tie at the nearest depth (before, each of them); v3: meshes are
+  // drawn chunk by chunk (which of two tying triangles comes first can change)
+  h.add(std::string_view("material-program-v3"))
       .add(default_shader_compiler().source_hash(fragment, ShaderStage::Fragment, defines));
   for (const auto& d : defines) h.add(std::string_view(d));
   h.add(block.data(), block.size());

@@ -2,6 +2,7 @@
 // its sampler. Uploaded once per run, shared by every pass and variant.
 #pragma once
 
+#include "core/scene/mesh.h"
 #include "core/vk/gpu_resources.h"
 #include "core/vk/handle.h"
 
@@ -9,8 +10,6 @@
 #include <vector>
 
 namespace glintlab::core {
-
-struct Mesh;
 
 // Environment as the GPU needs it: an RGBA32F lat-long mip chain (level 0
 // first, each level half the size of the previous, rounded down, at least 1).
@@ -26,12 +25,15 @@ class SceneGpu {
   const Buffer& vertices() const { return vertices_; }
   const Buffer& indices() const { return indices_; }
   uint32_t index_count() const { return index_count_; }
+  // The mesh's chunks (core/scene/mesh.h); a mesh without them is one chunk.
+  const std::vector<MeshChunk>& chunks() const { return chunks_; }
   const Image2D& env_map() const { return env_map_; }
   VkSampler env_sampler() const { return sampler_.get(); }
 
  private:
   Buffer vertices_, indices_;
   uint32_t index_count_ = 0;
+  std::vector<MeshChunk> chunks_;
   Image2D env_map_;
   Sampler sampler_;
 };

@@ -1,5 +1,6 @@
 #include "core/render/surface_pass.h"
 
+#include "core/render/chunk_culling.h"
 #include "core/scene/mesh.h"
 #include "core/vk/shader_compiler.h"
 
@@ -370,6 +371,7 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
   // floor); accumulated samples, and frames without sky, start from the clear
   // (each opaque sample of a sum its own).
   const bool clear_colour = !(opaque_ && opt_.sky);
+  triangles_drawn_ = triangles_all_ = 0;
   VkDeviceSize zero_offset = 0;
   VkBuffer vb = scene_.vertices().handle();
   for (size_t i = 0; i < in.samples.size(); ++i) {
@@ -395,12 +397,20 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
                        sizeof(SamplePush), &in.samples[i]);
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero_offset);
     vkCmdBindIndexBuffer(cmd, scene_.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+    const std::vector<DrawRange> ranges =
+        opt_.cull ? visible_ranges(scene_.chunks(), in.samples[i].view_proj * in.uniforms.model)
+                  : std::vector<DrawRange>{{0, scene_.index_count()}};
+    auto draw_mesh = [&] {
+      for (const DrawRange& r : ranges) vkCmdDrawIndexed(cmd, r.index_count, 1, r.first_index, 0, 0);
+    };
+    for (const DrawRange& r : ranges) triangles_drawn_ += r.index_count / 3;
+    triangles_all_ += scene_.index_count() / 3;
     if (!opaque_) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depth_pipeline_.get());
-      vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
+      draw_mesh();
     }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, surface_pipeline_.get());
-    vkCmdDrawIndexed(cmd, scene_.index_count(), 1, 0, 0, 0);
+    draw_mesh();
     if (opt_.sky) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, sky_pipeline_.get());
       vkCmdDraw(cmd, 3, 1, 0, 0);

@@ -59,6 +59,9 @@ struct SurfacePassOptions {
   // surface's colour is what remains (a farther fragment drawn first is
   // shaded, then overwritten: overdraw instead of a second geometry pass).
   bool single_sample = false;
+  // Draw only the mesh chunks each sample's view can see (core/render/chunk_culling.h);
+  // the image is the same either way, off only to compare.
+  bool cull = true;
   std::string color_target = "color";
   std::string motion_target = "motion";
   std::string depth_target = "depth";
@@ -76,6 +79,10 @@ class SurfacePass final : public Pass {
   const SurfacePassOptions& options() const { return opt_; }
   // Hash of the preprocessed fragment source (part of a reference's cache key).
   const std::string& fragment_source_hash() const { return fragment_hash_; }
+  // Triangles the last recorded frame drew per geometry pass, summed over its samples, and the
+  // mesh's triangle count times the samples: what culling left out is the difference.
+  uint64_t triangles_drawn() const { return triangles_drawn_; }
+  uint64_t triangles_submitted_without_culling() const { return triangles_all_; }
 
  private:
   const VkContext& ctx_;
@@ -114,6 +121,7 @@ class SurfacePass final : public Pass {
   Framebuffer add_framebuffer_;
   Pipeline add_pipeline_[2];  // write (the first sample), add
   bool hi_written_ = false;  // the high-resolution images were used by an earlier frame
+  uint64_t triangles_drawn_ = 0, triangles_all_ = 0;
 };
 
 // One frame of a graph holding only a surface pass with `options`: the

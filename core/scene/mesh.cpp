@@ -165,13 +165,63 @@ Mesh build_mesh(const MeshSpec& s) {
     const float r = 0.5f * s.size;
     for (int k = 0; k < s.layers; ++k) sphere_shell(m, r * (1.0f - float(k) * s.layer_spacing), s.tessellation);
   }
+  chunk_mesh(m);
+  return m;
+}
+
+void chunk_mesh(Mesh& m, int per_axis) {
+  if (per_axis < 1) throw std::invalid_argument("chunk_mesh: per_axis must be >= 1");
+  if (m.indices.size() % 3 != 0) throw std::invalid_argument("chunk_mesh: the index count is not a multiple of 3");
   m.bounds_min = glm::vec3(std::numeric_limits<float>::max());
   m.bounds_max = glm::vec3(std::numeric_limits<float>::lowest());
   for (const Vertex& v : m.vertices) {
     m.bounds_min = glm::min(m.bounds_min, v.position);
     m.bounds_max = glm::max(m.bounds_max, v.position);
   }
-  return m;
+  m.chunks.clear();
+  const size_t n_tri = m.indices.size() / 3;
+  if (n_tri == 0) return;
+  const glm::dvec3 lo(m.bounds_min), extent = glm::dvec3(m.bounds_max) - lo;
+  const double longest = std::max({extent.x, extent.y, extent.z});
+  // Cells along each axis: the longest gets per_axis, the others as many of the same width as fit
+  // (at least one). Cell coordinates come from a clamped double, never an out-of-range conversion.
+  glm::ivec3 cells(1);
+  for (int a = 0; a < 3; ++a)
+    if (longest > 0.0)
+      cells[a] = std::clamp(int(std::lround(double(per_axis) * extent[a] / longest)), 1, per_axis);
+  auto cell_of = [&](uint32_t t) {
+    glm::dvec3 c(0.0);
+    for (int k = 0; k < 3; ++k) c += glm::dvec3(m.vertices.at(m.indices[3 * t + k]).position);
+    c /= 3.0;
+    glm::ivec3 q(0);
+    for (int a = 0; a < 3; ++a)
+      if (extent[a] > 0.0)
+        q[a] = int(std::clamp(std::floor((c[a] - lo[a]) / extent[a] * cells[a]), 0.0, double(cells[a] - 1)));
+    return uint32_t((q.y * cells.z + q.z) * cells.x + q.x);
+  };
+  std::vector<uint32_t> cell(n_tri), order(n_tri);
+  for (uint32_t t = 0; t < n_tri; ++t) cell[t] = cell_of(t), order[t] = t;
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return cell[a] < cell[b]; });
+  std::vector<uint32_t> sorted(m.indices.size());
+  for (size_t i = 0; i < n_tri; ++i) {
+    const uint32_t t = order[i];
+    for (int k = 0; k < 3; ++k) sorted[3 * i + k] = m.indices[3 * t + k];
+    if (i == 0 || cell[t] != cell[order[i - 1]]) {
+      MeshChunk c;
+      c.first_index = uint32_t(3 * i);
+      c.lo = glm::vec3(std::numeric_limits<float>::max());
+      c.hi = glm::vec3(std::numeric_limits<float>::lowest());
+      m.chunks.push_back(c);
+    }
+    MeshChunk& c = m.chunks.back();
+    c.index_count += 3;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& p = m.vertices[sorted[3 * i + k]].position;
+      c.lo = glm::min(c.lo, p);
+      c.hi = glm::max(c.hi, p);
+    }
+  }
+  m.indices = std::move(sorted);
 }
 
 MeshSpec MeshSpec::from_json(JsonReader& r) {

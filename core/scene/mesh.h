@@ -35,11 +35,20 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == 48, "Vertex must stay 48 bytes (vertex buffer layout)");
 
+// A run of triangles that lie close together, indices [first_index, first_index + index_count), and
+// the box around their vertices (object space): the renderer skips the chunks a sample cannot see.
+struct MeshChunk {
+  uint32_t first_index = 0;
+  uint32_t index_count = 0;
+  glm::vec3 lo{0.0f}, hi{0.0f};
+};
+
 struct Mesh {
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;  // triangle list
   glm::vec3 bounds_min{0.0f};
   glm::vec3 bounds_max{0.0f};
+  std::vector<MeshChunk> chunks;  // partition of `indices` (chunk_mesh); empty: one chunk, the whole mesh
 };
 
 // What to build. JSON keys (all but "type" optional; keys that do not apply to the type are errors):
@@ -69,8 +78,16 @@ struct MeshSpec {
   static MeshSpec from_json(JsonReader& r);  // validates; calls r.finish()
 };
 
-// Throws std::invalid_argument for an unknown type or out-of-range parameters.
+// Throws std::invalid_argument for an unknown type or out-of-range parameters. The mesh comes chunked
+// (chunk_mesh).
 Mesh build_mesh(const MeshSpec& spec);
+
+// Groups the triangles into the cells of a grid over the mesh's bounds, `per_axis` cells along its
+// longest axis and as many cube-like cells along the others as fit (a flat plane: per_axis^2 cells,
+// a sphere per_axis^3), by the centroid of each triangle: reorders `indices` so that every non-empty
+// cell's triangles are one run (keeping their order), sets `chunks` (cells in x, then z, then y order)
+// and `bounds_min/max`. Vertices are not touched; the triangles are the same, drawn in another order.
+void chunk_mesh(Mesh& m, int per_axis = 8);
 
 // Height y(x, z) of the surfaces that are height fields ("plane", "wavy", "dunes"); used by the
 // mesh builder and by tests/camera placement. Throws std::invalid_argument for "sphere".

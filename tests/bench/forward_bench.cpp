@@ -8,7 +8,9 @@
 //      ratio to the full material, and what the material itself costs (row
 //      minus floor) and the floor's share of the row. Then floor, full and
 //      far only on the same surface with 32 triangles, their ratios among
-//      themselves: what the floor is when geometry costs nothing.
+//      themselves: what the floor is when geometry costs nothing. Floor and
+//      full also with every mesh chunk drawn (no culling), and how many
+//      triangles culling drew.
 //   2. The reference: ms per sample of a grid x grid reference frame against a
 //      1-spp frame's, and a geometry-bound case (a small image, many samples).
 //   3. The TAA resolve against the surface pass of the same frame.
@@ -69,6 +71,7 @@ struct Case {
   bool single_sample = true;  // one opaque draw (as the runner renders 1-spp frames); false: SSAA's path for
                               // several samples, drawn opaque into the pass's image and added by a resolve
   bool coarse = false;        // the same surface with the fewest triangles (what the floor is without geometry)
+  bool cull = true;           // draw only the mesh chunks the view can see
 };
 
 double median(std::vector<double> v) {
@@ -145,6 +148,9 @@ int main(int argc, char** argv) {
   core::SandParams minimal = no_t;
   minimal.glint_model = core::GlintModel::None;
   cases.push_back({"far only, T = 0, no glints", sand(minimal, 1e6, 1e30)});
+  // What culling the chunks the camera cannot see saves (the rows above cull).
+  cases.push_back({"floor, every chunk drawn", core::geometry_only_program(), true, false, false});
+  cases.push_back({"full, every chunk drawn", sand(base, 0.0, 1e30), true, false, false});
   // The same three on the surface tessellated 4x4 (32 triangles): the floor without the geometry's cost.
   const size_t first_coarse = cases.size();
   cases.push_back({"32 tris: floor", core::geometry_only_program(), true, true});
@@ -163,6 +169,7 @@ int main(int argc, char** argv) {
       core::SurfacePassOptions o;
       o.program = c.program;
       o.single_sample = c.single_sample;
+      o.cull = c.cull;
       passes.push_back(std::make_unique<core::SurfaceRenderer>(ctx, c.coarse ? coarse_scene : scene, w, h, o));
       for (int i = 0; i < 2; ++i) passes.back()->render(one.uniforms, one.samples);  // warm-up (JIT, caches)
     }
@@ -170,6 +177,11 @@ int main(int argc, char** argv) {
     for (int i = 0; i < frames; ++i)
       for (size_t c = 0; c < cases.size(); ++c)
         ms[c].push_back(passes[c]->render(one.uniforms, one.samples).timings[0].gpu_ms);
+    std::printf("  (chunk culling: %llu of %llu triangles drawn on the main mesh, %llu of %llu on the 32)\n",
+                (unsigned long long)passes[0]->pass().triangles_drawn(),
+                (unsigned long long)passes[0]->pass().triangles_submitted_without_culling(),
+                (unsigned long long)passes[first_coarse]->pass().triangles_drawn(),
+                (unsigned long long)passes[first_coarse]->pass().triangles_submitted_without_culling());
     for (size_t c = 0; c < cases.size(); ++c) {
       // Ratios and the floor within each mesh: the main one, then the coarse one.
       const size_t base_row = c < first_coarse ? 0 : first_coarse;

@@ -412,3 +412,74 @@ TEST(Renderer, SumOfOpaqueSamplesEqualsBlendedAccumulation) {
   EXPECT_GT(covered, a.pixel_count() / 8);
   EXPECT_GT(sky, 0u) << "some pixels must mix surface and sky samples or show sky";
 }
+
+TEST(Renderer, CulledChunksLeaveTheImageUnchanged) {
+  // The surface pass draws only the mesh chunks a sample's view can see. On a
+  // wavy plane seen from inside (part of it behind and beside the camera), in
+  // every mode (one opaque sample with and without motion, a sum of opaque
+  // samples, blended samples with motion, a supersampled pass), and looking
+  // up at the sky (nothing to draw): colour and motion equal the unculled
+  // pass bit for bit, and culling left triangles out.
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const int w = 96, h = 64;
+  core::MeshSpec spec;
+  spec.type = "wavy";
+  spec.size = 10.0f;
+  spec.tessellation = 64;
+  spec.amplitude = 0.4f;
+  spec.wavelength = 5.0f;
+  const core::Mesh mesh = core::build_mesh(spec);
+  ASSERT_EQ(mesh.chunks.size(), 64u);
+  const core::SceneGpu scene(ctx, mesh, constant_env(0.5f));
+  core::CameraState cam;
+  cam.position = {-1.0f, 1.2f, 0.5f};
+  cam.fov_y_deg = 40.0f;
+  struct Mode {
+    const char* name;
+    bool single, motion;
+    int supersample, samples;
+  };
+  for (const glm::vec3 target : {glm::vec3(3.0f, 0.0f, -1.0f), glm::vec3(0.0f, 10.0f, 0.6f)}) {
+    cam.target = target;
+    const bool sky_only = target.y > 1.0f;
+    const glm::mat4 vp = core::projection(cam, w, h) * core::view_matrix(cam);
+    const core::FrameUniforms u = uniforms_for(vp, w, h, cam.position);
+    for (const Mode m : {Mode{"one opaque sample", true, false, 1, 1}, Mode{"one opaque sample, motion", true, true, 1, 1},
+                         Mode{"sum of opaque samples", false, false, 1, 4},
+                         Mode{"blended samples, motion", false, true, 1, 4}, Mode{"supersampled", false, false, 2, 1}}) {
+      SCOPED_TRACE(std::string(m.name) + (sky_only ? ", sky only" : ""));
+      core::SurfacePassOptions o;
+      o.program.fragment = "tests/position.frag";
+      o.single_sample = m.single;
+      o.motion = m.motion;
+      o.supersample = m.supersample;
+      const std::vector<core::SamplePush> samples =
+          m.samples == 1 ? std::vector<core::SamplePush>{core::SamplePush{vp, {0.0f, 0.0f, 1.0f, 0.0f}}}
+                         : jittered_samples(cam, w, h, core::stratified_offsets(2, 3u));
+      core::SurfaceRenderer culled(ctx, scene, w, h, o);
+      o.cull = false;
+      core::SurfaceRenderer all(ctx, scene, w, h, o);
+      const core::FrameResult a = culled.render(u, samples), b = all.render(u, samples);
+      for (const char* target_name : {"color", "motion"}) {
+        if (!a.images.count(target_name)) continue;
+        const Image &x = a.images.at(target_name), &y = b.images.at(target_name);
+        ASSERT_EQ(x.data.size(), y.data.size());
+        EXPECT_EQ(std::memcmp(x.data.data(), y.data.data(), x.data.size() * sizeof(float)), 0) << target_name;
+      }
+      size_t covered = 0;
+      for (size_t px = 0; px < color(a).pixel_count(); ++px) covered += color(a).data[px * 4 + 3] > 0.0f;
+      const uint64_t drawn = culled.pass().triangles_drawn(), total = culled.pass().triangles_submitted_without_culling();
+      EXPECT_EQ(total, mesh.indices.size() / 3 * samples.size());
+      EXPECT_EQ(all.pass().triangles_drawn(), total);
+      if (sky_only) {
+        EXPECT_EQ(covered, 0u);
+        EXPECT_EQ(drawn, 0u);
+      } else {
+        EXPECT_GT(covered, color(a).pixel_count() / 2);
+        EXPECT_GT(drawn, 0u);
+        EXPECT_LT(drawn, total / 2) << "most of the plane is behind or beside the camera";
+      }
+    }
+  }
+}

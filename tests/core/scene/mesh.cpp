@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -193,4 +195,60 @@ TEST(Mesh, SpecFromJsonValidatesPerType) {
   JsonReader rt(bad_type, "scene.json", "mesh");
   EXPECT_THROW(MeshSpec::from_json(rt), ConfigError);
   EXPECT_THROW(build_mesh(spec_of("torus", 4)), std::invalid_argument);
+}
+
+// chunk_mesh: the chunks partition the index list in order, each box is the
+// tight box of its triangles' vertices, the triangles (with their winding)
+// are the same whatever the grid, and the grid has the cells it says.
+TEST(Mesh, ChunksPartitionTheTrianglesIntoTightBoxes) {
+  auto triangles = [](const Mesh& m) {  // each triangle rotated to start at its smallest index (winding kept)
+    std::vector<std::array<uint32_t, 3>> t;
+    for (size_t i = 0; i < m.indices.size(); i += 3) {
+      std::array<uint32_t, 3> a = {m.indices[i], m.indices[i + 1], m.indices[i + 2]};
+      while (a[0] > a[1] || a[0] > a[2]) a = {a[1], a[2], a[0]};
+      t.push_back(a);
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  auto check = [](const Mesh& m) {
+    uint32_t next = 0;
+    for (const MeshChunk& c : m.chunks) {
+      ASSERT_EQ(c.first_index, next);
+      ASSERT_GT(c.index_count, 0u);
+      ASSERT_EQ(c.index_count % 3, 0u);
+      glm::vec3 lo(1e30f), hi(-1e30f);
+      for (uint32_t i = c.first_index; i < c.first_index + c.index_count; ++i)
+        lo = glm::min(lo, m.vertices[m.indices[i]].position), hi = glm::max(hi, m.vertices[m.indices[i]].position);
+      EXPECT_EQ(c.lo, lo);
+      EXPECT_EQ(c.hi, hi);
+      next += c.index_count;
+    }
+    EXPECT_EQ(next, m.indices.size());
+  };
+  for (const char* name : {"plane", "wavy", "dunes", "sphere"}) {
+    const std::string type = name;
+    SCOPED_TRACE(type);
+    const Mesh m = build_mesh(spec_of(type, 32));
+    check(m);
+    // A flat plane: 8 x 8 cells of 4 x 4 quads; the others at least that many, a 2-layer sphere up to 8^3.
+    if (type == "plane") {
+      EXPECT_EQ(m.chunks.size(), 64u);
+    }
+    EXPECT_GE(m.chunks.size(), 64u);
+    EXPECT_LE(m.chunks.size(), 512u);
+    Mesh coarse = m;
+    chunk_mesh(coarse, 3);
+    check(coarse);
+    EXPECT_LT(coarse.chunks.size(), m.chunks.size());
+    EXPECT_EQ(triangles(coarse), triangles(m));
+    Mesh one = m;
+    chunk_mesh(one, 1);
+    ASSERT_EQ(one.chunks.size(), 1u);
+    EXPECT_EQ(one.indices, m.indices) << "one cell keeps the order";
+    EXPECT_EQ(one.chunks[0].lo, m.bounds_min);
+    EXPECT_EQ(one.chunks[0].hi, m.bounds_max);
+  }
+  Mesh bad = build_mesh(spec_of("plane", 2));
+  EXPECT_THROW(chunk_mesh(bad, 0), std::invalid_argument);
 }
