@@ -22,12 +22,14 @@ Debian 12 packages: python3-matplotlib python3-pil python3-numpy (bootstrap.sh).
 """
 
 import base64
+import concurrent.futures
 import csv
 import datetime
 import html
 import io
 import json
 import math
+import multiprocessing
 import os
 import shutil
 import subprocess
@@ -946,7 +948,15 @@ class Report:
 
     # ------------------------------------------------------------ the page
     def write(self):
-        body = [self.pareto(), self.curves(), self.table(), crops_section(self), self.glossary(), self.files()]
+        # The crops and sequences (image work in Pillow) run in a forked process while this one draws
+        # the plots (matplotlib): on two cores the report takes the longer of the two, not the sum.
+        crops = start_crops(self)
+        plots = [self.pareto(), self.curves(), self.table()]
+        crops_html, crops_files = crops()
+        for title, paths in crops_files:
+            for rel in paths:
+                self.figs.add_file(title, rel)
+        body = plots + [crops_html, self.glossary(), self.files()]
         text = "".join(body)
         self.sections = [(i, t) for i, t in (("pareto", "error vs cost"), ("curves", "per frame"), ("table", "table"),
                                              ("crops", "glint crops"), ("sequences", "sequences"),
@@ -967,6 +977,31 @@ class Report:
 # ------------------------------------------------------------------ crops and sequences
 MAX_ANIMATION_FRAMES = 120
 MAX_ANIMATION_PIXELS = 1_600_000  # per animation frame
+
+
+def crops_in_child(rep):
+    """crops_section in a forked child: its HTML and the files it listed."""
+    rep.figs.files = []
+    html_ = crops_section(rep)
+    return html_, rep.figs.files
+
+
+def start_crops(rep):
+    """Starts crops_section(rep) in a forked process and returns a function that waits for it and
+    gives (html, [(title, [paths])]); where no process can be forked, it runs here when asked. An
+    exception in the child (bad input, an I/O error, a bug) is raised again by the function."""
+    try:
+        pool = concurrent.futures.ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("fork"))
+        future = pool.submit(crops_in_child, rep)
+    except (OSError, ValueError):
+        return lambda: (crops_section(rep), [])
+
+    def wait():
+        try:
+            return future.result()
+        finally:
+            pool.shutdown()
+    return wait
 
 
 def crops_section(rep):
