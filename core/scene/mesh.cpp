@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace glintlab::core {
 
@@ -62,6 +63,8 @@ void validate(const MeshSpec& s) {
     if (!(s.wavelength > 0.0f) || !std::isfinite(s.wavelength)) bad("wavelength must be > 0");
   }
   if (s.type == "dunes" && (s.octaves < 1 || s.octaves > 16)) bad("octaves must be in [1, 16]");
+  if (!(s.max_edge_px >= 0.0f) || !std::isfinite(s.max_edge_px)) bad("max_edge_px must be >= 0");
+  if (s.type == "sphere" && s.max_edge_px > 0.0f) bad("max_edge_px applies to height fields only");
   if (s.type == "sphere" && (s.layers < 1 || !(s.layer_spacing >= 0.0f) || float(s.layers - 1) * s.layer_spacing >= 1.0f))
     bad("layers must be >= 1 and (layers - 1) * layer_spacing < 1 (inner shells need a positive radius)");
 }
@@ -91,24 +94,137 @@ void grid_indices(Mesh& m, uint32_t base, int nu, int nv, bool flip, bool skip_t
     }
 }
 
-void height_field_mesh(Mesh& m, const MeshSpec& s, const std::function<glm::vec3(float, float)>& h_grad) {
-  // h_grad(x, z) = (h, dh/dx, dh/dz). u along +x, v along +z.
+// h_grad(x, z) = (h, dh/dx, dh/dz) of a height field.
+using HeightGrad = std::function<glm::vec3(float, float)>;
+
+// Vertex (i, j) of the n x n grid of a height field: u along +x, v along +z.
+Vertex height_field_vertex(const MeshSpec& s, const HeightGrad& h_grad, int i, int j) {
   const int n = s.tessellation;
   const float half = 0.5f * s.size;
+  glm::vec2 uv(float(i) / float(n), float(j) / float(n));
+  float x = -half + uv.x * s.size, z = -half + uv.y * s.size;
+  glm::vec3 hg = h_grad(x, z);
+  glm::vec3 p(x, hg.x, z);
+  glm::vec3 dpdu = glm::vec3(1.0f, hg.y, 0.0f) * s.size;
+  glm::vec3 dpdv = glm::vec3(0.0f, hg.z, 1.0f) * s.size;
+  glm::vec3 normal(-hg.y, 1.0f, -hg.z);  // normal of y = h(x, z)
+  return make_vertex(p, normal, dpdu, dpdv, uv);
+}
+
+void height_field_mesh(Mesh& m, const MeshSpec& s, const HeightGrad& h_grad) {
+  const int n = s.tessellation;
   m.vertices.reserve(size_t(n + 1) * size_t(n + 1));
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      glm::vec2 uv(float(i) / float(n), float(j) / float(n));
-      float x = -half + uv.x * s.size, z = -half + uv.y * s.size;
-      glm::vec3 hg = h_grad(x, z);
-      glm::vec3 p(x, hg.x, z);
-      glm::vec3 dpdu = glm::vec3(1.0f, hg.y, 0.0f) * s.size;
-      glm::vec3 dpdv = glm::vec3(0.0f, hg.z, 1.0f) * s.size;
-      glm::vec3 normal(-hg.y, 1.0f, -hg.z);  // normal of y = h(x, z)
-      m.vertices.push_back(make_vertex(p, normal, dpdu, dpdv, uv));
-    }
+    for (int i = 0; i <= n; ++i) m.vertices.push_back(height_field_vertex(s, h_grad, i, j));
   // cross(+x, +z) = -y: reverse so that triangles face +Y.
   grid_indices(m, 0, n, n, /*flip=*/true, false, false);
+}
+
+// The adaptive grid of MeshSpec::max_edge_px: a restricted quadtree whose leaves are aligned squares
+// of the n x n grid, 2^k grid cells wide (k <= the number of times n divides by 2). `level` holds,
+// for every grid cell, log2 of the width of the leaf that covers it.
+void adaptive_height_field_mesh(Mesh& m, const MeshSpec& s, const HeightGrad& h_grad,
+                                const std::vector<MeshView>& views, double h_lo, double h_hi) {
+  const int n = s.tessellation;
+  int top = 0;  // the widest leaf is 2^top cells
+  while (top < 16 && (n >> top) % 2 == 0) ++top;
+  const double unit = double(s.size) / double(n), half = 0.5 * double(s.size);
+  // Split a cell while some view sees its edge wider than max_edge_px; the cell's box spans the
+  // field's whole height range (nearer to the eye than the cell itself: errs towards splitting).
+  auto too_wide = [&](int i0, int j0, int width) {
+    const double edge = width * unit;
+    const glm::dvec3 lo(-half + i0 * unit, h_lo, -half + j0 * unit), hi = lo + glm::dvec3(edge, h_hi - h_lo, edge);
+    for (const MeshView& v : views) {
+      const glm::dvec3 e(v.eye), d = e - glm::clamp(e, lo, hi);
+      if (edge * double(v.focal_px) > double(s.max_edge_px) * std::sqrt(glm::dot(d, d))) return true;
+    }
+    return false;
+  };
+  std::vector<uint8_t> level(size_t(n) * size_t(n), uint8_t(top));
+  auto lvl = [&](int i, int j) -> uint8_t& { return level[size_t(j) * size_t(n) + size_t(i)]; };
+  auto set_leaf = [&](int i0, int j0, int k) {
+    const int w = 1 << k;
+    for (int j = j0; j < j0 + w; ++j)
+      for (int i = i0; i < i0 + w; ++i) lvl(i, j) = uint8_t(k);
+  };
+  struct Cell {
+    int i0, j0, k;
+  };
+  std::vector<Cell> stack;
+  for (int j = 0; j < n; j += 1 << top)
+    for (int i = 0; i < n; i += 1 << top) stack.push_back({i, j, top});
+  while (!stack.empty()) {
+    const Cell c = stack.back();
+    stack.pop_back();
+    if (c.k > 0 && too_wide(c.i0, c.j0, 1 << c.k)) {
+      const int h = 1 << (c.k - 1);
+      for (int q = 0; q < 4; ++q) stack.push_back({c.i0 + (q & 1) * h, c.j0 + (q >> 1) * h, c.k - 1});
+    } else {
+      set_leaf(c.i0, c.j0, c.k);
+    }
+  }
+  // Restrict: a leaf whose neighbour across an edge is more than twice finer is split, until none is.
+  auto is_origin = [&](int i, int j) {
+    const int w = 1 << lvl(i, j);
+    return i % w == 0 && j % w == 0;
+  };
+  auto finest_across = [&](int i0, int j0, int w) {  // smallest leaf width along the four edges outside
+    int f = 1 << 30;
+    for (int t = 0; t < w; ++t) {
+      if (j0 > 0) f = std::min(f, 1 << lvl(i0 + t, j0 - 1));
+      if (j0 + w < n) f = std::min(f, 1 << lvl(i0 + t, j0 + w));
+      if (i0 > 0) f = std::min(f, 1 << lvl(i0 - 1, j0 + t));
+      if (i0 + w < n) f = std::min(f, 1 << lvl(i0 + w, j0 + t));
+    }
+    return f;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (!is_origin(i, j)) continue;
+        const int k = lvl(i, j), w = 1 << k;
+        if (k > 0 && finest_across(i, j, w) < w / 2) {
+          for (int q = 0; q < 4; ++q) set_leaf(i + (q & 1) * (w / 2), j + (q >> 1) * (w / 2), k - 1);
+          changed = true;
+        }
+      }
+  }
+  // Emit: vertices on demand, shared by grid point; a leaf with no finer neighbour is the two
+  // triangles of the full grid's quad (same diagonal, same winding), one next to a finer leaf is a
+  // fan around its centre through the midpoints the finer side has.
+  std::unordered_map<uint64_t, uint32_t> index_of;
+  auto vid = [&](int i, int j) {
+    const uint64_t key = uint64_t(uint32_t(j)) * uint64_t(n + 1) + uint64_t(uint32_t(i));
+    auto [it, fresh] = index_of.try_emplace(key, uint32_t(m.vertices.size()));
+    if (fresh) m.vertices.push_back(height_field_vertex(s, h_grad, i, j));
+    return it->second;
+  };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (!is_origin(i, j)) continue;
+      const int w = 1 << lvl(i, j), h = w / 2;
+      // Is the neighbour across each edge finer? (It then covers the edge with two leaves of width h.)
+      const bool bottom = j > 0 && (1 << lvl(i, j - 1)) < w, top_ = j + w < n && (1 << lvl(i, j + w)) < w;
+      const bool left = i > 0 && (1 << lvl(i - 1, j)) < w, right = i + w < n && (1 << lvl(i + w, j)) < w;
+      const uint32_t p00 = vid(i, j), p10 = vid(i + w, j), p11 = vid(i + w, j + w), p01 = vid(i, j + w);
+      if (!(bottom || top_ || left || right)) {
+        m.indices.insert(m.indices.end(), {p00, p11, p10, p00, p01, p11});
+        continue;
+      }
+      // Boundary counter-clockwise in (i, j); each triangle (centre, b, a) for consecutive a, b winds
+      // as the full grid's do (facing +Y).
+      std::vector<uint32_t> ring = {p00};
+      if (bottom) ring.push_back(vid(i + h, j));
+      ring.push_back(p10);
+      if (right) ring.push_back(vid(i + w, j + h));
+      ring.push_back(p11);
+      if (top_) ring.push_back(vid(i + h, j + w));
+      ring.push_back(p01);
+      if (left) ring.push_back(vid(i, j + h));
+      const uint32_t c = vid(i + h, j + h);
+      for (size_t a = 0; a < ring.size(); ++a) m.indices.insert(m.indices.end(), {c, ring[(a + 1) % ring.size()], ring[a]});
+    }
 }
 
 void sphere_shell(Mesh& m, float r, int slices) {
@@ -141,26 +257,36 @@ float height_field(const MeshSpec& s, float x, float z) {
   throw std::invalid_argument("height_field: mesh type \"" + s.type + "\" is not a height field");
 }
 
-Mesh build_mesh(const MeshSpec& s) {
+Mesh build_mesh(const MeshSpec& s, const std::vector<MeshView>& views) {
   validate(s);
+  if (s.max_edge_px > 0.0f && views.empty())
+    throw std::invalid_argument("mesh \"" + s.type + "\": max_edge_px needs the camera's views");
   Mesh m;
+  // A height field, with the range of its heights (what bounds the adaptive grid's cells).
+  auto field = [&](const HeightGrad& h_grad, double h_lo, double h_hi) {
+    if (s.max_edge_px > 0.0f)
+      adaptive_height_field_mesh(m, s, h_grad, views, h_lo, h_hi);
+    else
+      height_field_mesh(m, s, h_grad);
+  };
   if (s.type == "plane") {
-    height_field_mesh(m, s, [](float, float) { return glm::vec3(0.0f); });
+    field([](float, float) { return glm::vec3(0.0f); }, 0.0, 0.0);
   } else if (s.type == "wavy") {
     // Kajs sec. 2.2 "wavy plane": y = A sin(2π x / λ), analytic derivative.
     const float k = kTwoPi / s.wavelength;
-    height_field_mesh(m, s, [&](float x, float) {
+    const double a = std::abs(double(s.amplitude));
+    field([&](float x, float) {
       return glm::vec3(s.amplitude * std::sin(k * x), s.amplitude * k * std::cos(k * x), 0.0f);
-    });
+    }, -a, a);
   } else if (s.type == "dunes") {
     // Normals from central differences of the height with the grid spacing as step, i.e. the slope
     // the triangles themselves have.
     const float d = s.size / float(s.tessellation);
-    height_field_mesh(m, s, [&](float x, float z) {
+    field([&](float x, float z) {
       float hx = (ridged_dunes(s, x + d, z) - ridged_dunes(s, x - d, z)) / (2.0f * d);
       float hz = (ridged_dunes(s, x, z + d) - ridged_dunes(s, x, z - d)) / (2.0f * d);
       return glm::vec3(ridged_dunes(s, x, z), hx, hz);
-    });
+    }, std::min(0.0, double(s.amplitude)), std::max(0.0, double(s.amplitude)));
   } else {  // sphere
     const float r = 0.5f * s.size;
     for (int k = 0; k < s.layers; ++k) sphere_shell(m, r * (1.0f - float(k) * s.layer_spacing), s.tessellation);
@@ -245,6 +371,7 @@ MeshSpec MeshSpec::from_json(JsonReader& r) {
     if (float(s.layers - 1) * s.layer_spacing >= 1.0f)
       r.fail("layer_spacing", "(layers - 1) * layer_spacing must be < 1 so that every shell has a positive radius");
   }
+  if (s.type != "sphere") s.max_edge_px = float(r.get_number("max_edge_px", 0.0, 0.0, 1e4));
   if (auto m = r.optional_child("motion")) s.motion = ObjectMotion::from_json(*m);
   r.finish();
   return s;

@@ -60,6 +60,13 @@ struct Mesh {
 //           (Kajs sec. 2.2) = `layers` concentric shells, shell k with radius r (1 - k·layer_spacing)
 //   dunes:  "amplitude" (default 1.5), "wavelength" (base feature size, default 8), "octaves"
 //           (default 4), "lacunarity" (default 2), "gain" (default 0.5), "seed" (default 1)
+//   plane/wavy/dunes: "max_edge_px" (default 0 = off): a grid that adapts to the run's camera, fixed
+//           for the whole run. The tessellation x tessellation grid is the finest level; cells are
+//           merged in 2 x 2 blocks (as often as tessellation is divisible by 2) where, seen from every
+//           camera position of the path, the merged cell's edge spans at most this many pixels at the
+//           run's resolution. Neighbouring cells differ by at most one level and a cell next to a
+//           finer one is a fan around its centre, so the mesh has no cracks; every vertex is one of
+//           the full grid's, with the same attributes (build_mesh with `views`).
 //   any:    "motion": rigid motion of the mesh over time (core/scene/object_motion.h)
 struct MeshSpec {
   std::string type = "plane";
@@ -73,14 +80,22 @@ struct MeshSpec {
   float lacunarity = 2.0f;
   float gain = 0.5f;
   uint32_t seed = 1;
+  float max_edge_px = 0.0f;  // > 0: the grid adapts to the camera (height fields; see above)
   ObjectMotion motion;  // "motion": rigid motion over time (core/scene/object_motion.h); default none
 
   static MeshSpec from_json(JsonReader& r);  // validates; calls r.finish()
 };
 
-// Throws std::invalid_argument for an unknown type or out-of-range parameters. The mesh comes chunked
-// (chunk_mesh).
-Mesh build_mesh(const MeshSpec& spec);
+// A camera position the adaptive grid must serve: `eye` in the mesh's object space, `focal_px` the
+// pixels per unit of length seen at unit distance (image height / (2 tan(fov_y / 2))).
+struct MeshView {
+  glm::vec3 eye{0.0f};
+  float focal_px = 1.0f;
+};
+
+// Throws std::invalid_argument for an unknown type or out-of-range parameters, and for
+// max_edge_px > 0 without views. The mesh comes chunked (chunk_mesh).
+Mesh build_mesh(const MeshSpec& spec, const std::vector<MeshView>& views = {});
 
 // Groups the triangles into the cells of a grid over the mesh's bounds, `per_axis` cells along its
 // longest axis and as many cube-like cells along the others as fit (a flat plane: per_axis^2 cells,

@@ -50,7 +50,9 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
   }
 
   core::ContentHash h;
-  h.add(std::string_view("glintlab-reference-v4"))  // v4: supersampled passes (supersampling())
+  // v4: supersampled passes (supersampling()); v5: the mesh itself (an adaptive grid depends on
+  // the camera path and the resolution, not only on the scene's keys)
+  h.add(std::string_view("glintlab-reference-v5"))
       .add(int64_t(kReferencePatternSeed))
       .add(spec.source.at("scene").dump())
       .add(spec.working_space)
@@ -60,6 +62,8 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
       .add(int64_t(spec.reference.grid))
       .add(scene.env_texture.mips_rgba[0].data(), scene.env_texture.mips_rgba[0].size() * 4)
       .add(scene.env.sh_irradiance.data(), sizeof scene.env.sh_irradiance)
+      .add(scene.mesh.vertices.data(), scene.mesh.vertices.size() * sizeof(core::Vertex))
+      .add(scene.mesh.indices.data(), scene.mesh.indices.size() * sizeof(uint32_t))
       .add(core::default_shader_compiler().source_hash("passes/surface.vert", core::ShaderStage::Vertex))
       .add(core::default_shader_compiler().source_hash("passes/sky.frag", core::ShaderStage::Fragment));
   plan.scene_key = h.hex();

@@ -127,9 +127,24 @@ void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& 
     space("variants[" + std::to_string(i) + "].material.palette_space", spec.variants[i].material.palette_space);
 }
 
+std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec) {
+  std::vector<core::MeshView> views;
+  if (!(spec.mesh.max_edge_px > 0.0f)) return views;
+  // Every frame of the path, not only those this run renders (--frames, shards): one mesh per
+  // experiment and resolution.
+  for (int k = 0; k < spec.path.frames(); ++k) {
+    const core::FrameCamera cam = spec.path.frame(k, spec.width, spec.height);
+    glm::vec3 eye = cam.position;
+    if (spec.mesh.motion.moves()) eye = glm::vec3(glm::inverse(spec.mesh.motion.model_at(cam.time)) * glm::vec4(eye, 1.0f));
+    const double half_fov = 0.5 * double(cam.state.fov_y_deg) * 3.14159265358979323846 / 180.0;
+    views.push_back({eye, float(double(spec.height) / (2.0 * std::tan(half_fov)))});
+  }
+  return views;
+}
+
 SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
   SceneData d;
-  d.mesh = core::build_mesh(spec.mesh);
+  d.mesh = core::build_mesh(spec.mesh, mesh_views(spec));
   d.env = prepare_environment(spec, cm);
   d.env_texture = environment_texture(d.env);
   d.range = distance_range(spec, d.mesh);

@@ -42,6 +42,10 @@ struct SceneData {
 };
 SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& cm);
 
+// The camera positions an adaptive grid ("max_edge_px") serves: every frame of the path, at the
+// spec's resolution, in the mesh's object space. Empty when the grid does not adapt.
+std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec);
+
 // Frame uniforms of frame `k` of the spec's path (unjittered camera, mesh motion).
 core::FrameUniforms frame_uniforms(const ExperimentSpec& spec, const SceneData& scene, int k);
 

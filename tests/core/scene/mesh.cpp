@@ -8,6 +8,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <map>
 #include <vector>
 
 using namespace glintlab;
@@ -251,4 +253,130 @@ TEST(Mesh, ChunksPartitionTheTrianglesIntoTightBoxes) {
   }
   Mesh bad = build_mesh(spec_of("plane", 2));
   EXPECT_THROW(chunk_mesh(bad, 0), std::invalid_argument);
+}
+
+namespace {
+
+// Triangles as vertex-position triples (winding kept, rotated to a canonical start), sorted:
+// meshes with other vertex numbering compare equal when they have the same triangles.
+std::vector<std::array<float, 9>> position_triangles(const Mesh& m) {
+  std::vector<std::array<float, 9>> out;
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    std::array<std::array<float, 3>, 3> v;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 p = m.vertices[m.indices[t + size_t(k)]].position;
+      v[size_t(k)] = {p.x, p.y, p.z};
+    }
+    while (v[0] > v[1] || v[0] > v[2]) v = {v[1], v[2], v[0]};
+    std::array<float, 9> a;
+    for (int k = 0; k < 9; ++k) a[size_t(k)] = v[size_t(k / 3)][size_t(k % 3)];
+    out.push_back(a);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST(Mesh, AdaptiveGridIsTheFullGridWhereEveryCellIsSeenClose) {
+  for (const char* type : {"plane", "wavy", "dunes"}) {
+    SCOPED_TRACE(type);
+    MeshSpec s = spec_of(type, 32);
+    const Mesh full = build_mesh(s);
+    s.max_edge_px = 4.0f;
+    const Mesh adaptive = build_mesh(s, {MeshView{{0.0f, 3.0f, 0.0f}, 1e5f}});
+    EXPECT_EQ(position_triangles(adaptive), position_triangles(full));
+  }
+}
+
+// Dunes 40 units wide, 128 x 128 cells, seen from beyond one edge and from above its centre; and a
+// plane seen by a view of so few pixels per unit (focal_px / max_edge_px < 1) that cells two
+// levels apart would meet without the 2:1 restriction.
+class AdaptiveGrid : public ::testing::TestWithParam<int> {};
+
+TEST_P(AdaptiveGrid, IsWatertightAndCoarseOnlyWhereCellsLookSmall) {
+  MeshSpec s = spec_of(GetParam() == 0 ? "dunes" : "plane", 128, 40.0f);
+  const Mesh full = build_mesh(s);
+  s.max_edge_px = 4.0f;
+  const std::vector<MeshView> views =
+      GetParam() == 0 ? std::vector<MeshView>{{{-26.0f, 4.0f, 3.0f}, 150.0f}, {{0.0f, 60.0f, 0.0f}, 150.0f}}
+                      : std::vector<MeshView>{{{0.75f, 0.0f, 1.0f}, 1.0f}};
+  const Mesh m = build_mesh(s, views);
+  const double half = 20.0, unit = 40.0 / 128.0;
+
+  // Every vertex is the full grid's vertex at its uv, attribute for attribute.
+  ASSERT_EQ(full.vertices.size(), 129u * 129u);
+  for (const Vertex& v : m.vertices) {
+    const int i = int(std::lround(v.uv.x * 128.0f)), j = int(std::lround(v.uv.y * 128.0f));
+    ASSERT_EQ(std::memcmp(&v, &full.vertices[size_t(j) * 129 + size_t(i)], sizeof(Vertex)), 0) << i << "," << j;
+  }
+  // Watertight: every directed edge has its reverse once, except on the border of the square; all
+  // triangles face up; together they cover the square once (projected area).
+  std::map<std::pair<uint32_t, uint32_t>, int> edges;
+  double area = 0.0;
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    const uint32_t id[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
+    for (int k = 0; k < 3; ++k) ++edges[{id[k], id[(k + 1) % 3]}];
+    const glm::dvec3 a(m.vertices[id[0]].position), b(m.vertices[id[1]].position), c(m.vertices[id[2]].position);
+    const double ny = glm::cross(b - a, c - a).y;
+    EXPECT_GT(ny, 0.0) << "triangle " << t / 3 << " faces down";
+    area += 0.5 * ny;
+  }
+  EXPECT_NEAR(area, 40.0 * 40.0, 1e-6 * 40.0 * 40.0);
+  auto on_border = [&](uint32_t a, uint32_t b) {
+    const glm::dvec3 p(m.vertices[a].position), q(m.vertices[b].position);
+    auto at = [&](double v) { return std::abs(std::abs(v) - half) < 1e-6; };
+    return (at(p.x) && at(q.x) && p.x == q.x) || (at(p.z) && at(q.z) && p.z == q.z);
+  };
+  int open = 0;
+  for (const auto& [e, count] : edges) {
+    EXPECT_EQ(count, 1) << "edge drawn twice in one direction";
+    const auto rev = edges.find({e.second, e.first});
+    if (rev == edges.end() && !on_border(e.first, e.second)) ++open;
+  }
+  EXPECT_EQ(open, 0) << "edges without a neighbour inside the square (a crack or T-junction)";
+
+  // Coarser than the full grid, and no triangle wider on screen than allowed, unless it is one of
+  // the full grid's: the cell's edge (its longest side seen from above, the cell's diagonal, over
+  // sqrt(2)) against the distance to the triangle's own box.
+  EXPECT_LT(m.indices.size(), full.indices.size() * 6 / 10);
+  int coarse = 0;
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    glm::dvec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = glm::dvec3(m.vertices[m.indices[t + size_t(k)]].position);
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k)
+      longest = std::max(longest, glm::length(glm::dvec2(p[k].x - p[(k + 1) % 3].x, p[k].z - p[(k + 1) % 3].z)));
+    const glm::dvec3 lo = glm::min(p[0], glm::min(p[1], p[2])), hi = glm::max(p[0], glm::max(p[1], p[2]));
+    if (longest <= std::sqrt(2.0) * unit * 1.0001) continue;  // a cell of the full grid
+    ++coarse;
+    for (const MeshView& v : views) {
+      const glm::dvec3 e(v.eye), d = e - glm::clamp(e, lo, hi);
+      EXPECT_LE(longest / std::sqrt(2.0) * v.focal_px, 4.0 * glm::length(d) * 1.0001) << "triangle " << t / 3;
+    }
+  }
+  EXPECT_GT(coarse, 100);
+}
+INSTANTIATE_TEST_SUITE_P(Mesh, AdaptiveGrid, ::testing::Values(0, 1));
+
+TEST(Mesh, AdaptiveGridKeysAndMisuse) {
+  nlohmann::json ok = {{"type", "wavy"}, {"max_edge_px", 3}};
+  JsonReader r(ok, "scene.json", "mesh");
+  EXPECT_EQ(MeshSpec::from_json(r).max_edge_px, 3.0f);
+  for (const nlohmann::json& bad : {nlohmann::json{{"type", "sphere"}, {"max_edge_px", 3}},
+                                    nlohmann::json{{"type", "dunes"}, {"max_edge_px", -1}}}) {
+    JsonReader rb(bad, "scene.json", "mesh");
+    try {
+      MeshSpec::from_json(rb);
+      ADD_FAILURE() << "expected ConfigError for " << bad.dump();
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("mesh.max_edge_px"), std::string::npos) << e.what();
+    }
+  }
+  MeshSpec s = spec_of("plane", 8);
+  s.max_edge_px = 2.0f;
+  EXPECT_THROW(build_mesh(s), std::invalid_argument) << "an adaptive grid needs the camera's views";
+  // A tessellation with no factor 2 has nothing to merge: the full grid.
+  s.tessellation = 9;
+  EXPECT_EQ(build_mesh(s, {MeshView{{1000.0f, 1.0f, 0.0f}, 1.0f}}).indices.size(), 2u * 9u * 9u * 3u);
 }
