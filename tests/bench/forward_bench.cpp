@@ -11,6 +11,9 @@
 //      themselves: what the floor is when geometry costs nothing. Floor and
 //      full also with every mesh chunk drawn (no culling), and how many
 //      triangles culling drew.
+//   1b. Terrain: the default experiment's dunes from its flyover, floor and
+//      material on the full grid with every chunk drawn, culled, and on the
+//      grid adapted to the camera path: what culling and the adaptive grid save.
 //   2. The reference: ms per sample of a grid x grid reference frame against a
 //      1-spp frame's, and a geometry-bound case (a small image, many samples).
 //   3. The TAA resolve against the surface pass of the same frame.
@@ -18,7 +21,7 @@
 //      render of the same frame (its reference): ms per metric.
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
-// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--only surface|reference|taa|metrics]
+// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--only surface|terrain|reference|taa|metrics]
 #include "core/material/program.h"
 #include "core/util/allocator.h"
 #include "core/render/frame_graph.h"
@@ -65,6 +68,23 @@ const char* kScene = R"({
   "variants": [{"name": "no-aa"}, {"name": "taa", "aa": "taa"}]
 })";
 
+// The default experiment's terrain (dunes, 51200 triangles in the full grid) and flyover, with the
+// grid adapted to the camera path at 4 px.
+const char* kTerrain = R"({
+  "name": "bench-terrain",
+  "resolution": [320, 180],
+  "scene": {
+    "mesh": {"type": "dunes", "size": 80, "tessellation": 160, "max_edge_px": 4, "amplitude": 3, "wavelength": 24,
+             "octaves": 3, "gain": 0.4, "seed": 3},
+    "sky": {"turbidity": 2.2, "sky_intensity": 0.45, "sun_elevation_deg": 22, "sun_azimuth_deg": 40, "sun_intensity": 5}
+  },
+  "camera_path": {"type": "flyover", "fps": 30, "frames": 8, "start": [-30, -4], "direction": [1, 0.25],
+                  "speed": 3, "height": 5, "pitch_deg": 22, "fov": 50, "far": 1000},
+  "material": {"preset": "thesis-hdri-match", "noise_scale": 120, "glint_sigma": 0.002, "I_glints": [20, 20, 20],
+               "sigmoid_a": 2, "sigmoid_b": 1000},
+  "variants": [{"name": "no-aa"}]
+})";
+
 struct Case {
   std::string name;
   core::MaterialProgram program;
@@ -105,7 +125,7 @@ int main(int argc, char** argv) {
       i += 2;
     } else {
       std::cerr << "usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] "
-                   "[--only surface|reference|taa|metrics]\n";
+                   "[--only surface|terrain|reference|taa|metrics]\n";
       return 2;
     }
   }
@@ -189,6 +209,64 @@ int main(int argc, char** argv) {
       const double m = median(ms[c]);
       std::printf("  %-34s %9.2f %9.2f %7.2f %11.2f %10.0f%%\n", cases[c].name.c_str(), m,
                   double(w) * h * 1e-6 / (m * 1e-3), m / full_ms, m - floor_ms, 100.0 * floor_ms / m);
+    }
+  }
+
+  // ---- 1b. terrain: what culling and the adaptive grid save on a large mesh seen from inside it
+  // (the default experiment's frame 4): floor and the sand material the scene needs ("sand"), on the full grid with
+  // every chunk drawn, with culling, and on the adapted grid with culling.
+  if (section("terrain")) {
+    std::vector<std::pair<int, int>> tsizes = sizes;
+    if (tsizes.size() > 1) tsizes = {{320, 180}, {1280, 720}};
+    for (auto [w, h] : tsizes) {
+      ExperimentSpec tspec = ExperimentSpec::from_json(nlohmann::json::parse(kTerrain), "<bench terrain>");
+      tspec.width = w;
+      tspec.height = h;
+      const SceneData tdata = build_scene(tspec, cm);  // the adapted grid
+      core::MeshSpec full_spec = tspec.mesh;
+      full_spec.max_edge_px = 0.0f;
+      const core::Mesh full_mesh = core::build_mesh(full_spec);
+      core::SceneGpu full_gpu(ctx, full_mesh, tdata.env_texture), adapted_gpu(ctx, tdata.mesh, tdata.env_texture);
+      const core::SandParams tp = to_working_space(tspec.variants.front().material, tspec.working_space, cm);
+      const core::MaterialProgram material = core::sand_program(tp, tdata.range, core::ProgramRole::Variant);
+      core::FrameInputs in;
+      in.uniforms = frame_uniforms(tspec, tdata, 4);
+      in.samples = core::samples_for(tspec.path, 4, w, h, {glm::vec2(0.0f)});
+      struct TerrainCase {
+        std::string name;
+        const core::SceneGpu* scene;
+        bool cull;
+        bool floor;
+      };
+      const std::vector<TerrainCase> tcases = {
+          {"floor: full grid, every chunk drawn", &full_gpu, false, true},
+          {"floor: full grid, culled", &full_gpu, true, true},
+          {"floor: adapted grid, culled", &adapted_gpu, true, true},
+          {"sand: full grid, every chunk drawn", &full_gpu, false, false},
+          {"sand: full grid, culled", &full_gpu, true, false},
+          {"sand: adapted grid, culled", &adapted_gpu, true, false}};
+      std::vector<std::unique_ptr<core::SurfaceRenderer>> tpasses;
+      for (const TerrainCase& c : tcases) {
+        core::SurfacePassOptions o;
+        o.program = c.floor ? core::geometry_only_program() : material;
+        o.single_sample = true;
+        o.cull = c.cull;
+        tpasses.push_back(std::make_unique<core::SurfaceRenderer>(ctx, *c.scene, w, h, o));
+        for (int i = 0; i < 2; ++i) tpasses.back()->render(in.uniforms, in.samples);
+      }
+      std::vector<std::vector<double>> tms(tcases.size());
+      for (int i = 0; i < frames; ++i)
+        for (size_t c = 0; c < tcases.size(); ++c)
+          tms[c].push_back(tpasses[c]->render(in.uniforms, in.samples).timings[0].gpu_ms);
+      std::printf("\nterrain %dx%d: the default experiment's dunes, flyover frame 4 (full grid %zu triangles, "
+                  "adapted at max_edge_px 4: %zu)\n",
+                  w, h, full_mesh.indices.size() / 3, tdata.mesh.indices.size() / 3);
+      std::printf("  %-40s %9s %11s %7s\n", "case", "ms/frame", "triangles", "ratio");
+      for (size_t c = 0; c < tcases.size(); ++c) {
+        const size_t first = c < 3 ? 0 : 3;  // ratio to the full grid with every chunk drawn
+        std::printf("  %-40s %9.2f %11llu %7.2f\n", tcases[c].name.c_str(), median(tms[c]),
+                    (unsigned long long)tpasses[c]->pass().triangles_drawn(), median(tms[c]) / median(tms[first]));
+      }
     }
   }
 
