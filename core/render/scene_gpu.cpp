@@ -2,8 +2,6 @@
 
 #include "core/scene/mesh.h"
 
-#include <limits>
-
 namespace glintlab::core {
 
 SceneGpu::SceneGpu(const VkContext& ctx, const Mesh& mesh, const EnvironmentTexture& env) {
@@ -13,15 +11,7 @@ SceneGpu::SceneGpu(const VkContext& ctx, const Mesh& mesh, const EnvironmentText
   indices_ = Buffer(ctx, mesh.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   indices_.upload(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
   index_count_ = uint32_t(mesh.indices.size());
-  chunks_ = mesh.chunks;
-  if (chunks_.empty()) {
-    MeshChunk all;
-    all.index_count = index_count_;
-    all.lo = glm::vec3(std::numeric_limits<float>::max());
-    all.hi = glm::vec3(std::numeric_limits<float>::lowest());
-    for (const Vertex& v : mesh.vertices) all.lo = glm::min(all.lo, v.position), all.hi = glm::max(all.hi, v.position);
-    chunks_.push_back(all);
-  }
+  chunks_ = mesh.chunks.empty() ? std::vector<MeshChunk>{whole_mesh_chunk(mesh)} : mesh.chunks;
 
   if (env.width == 0 || env.height == 0 || env.mips_rgba.empty())
     throw VulkanError("SceneGpu: the environment texture is empty");

@@ -295,15 +295,24 @@ Mesh build_mesh(const MeshSpec& s, const std::vector<MeshView>& views) {
   return m;
 }
 
+MeshChunk whole_mesh_chunk(const Mesh& m) {
+  MeshChunk c;
+  c.index_count = uint32_t(m.indices.size());
+  c.lo = glm::vec3(std::numeric_limits<float>::max());
+  c.hi = glm::vec3(std::numeric_limits<float>::lowest());
+  for (const Vertex& v : m.vertices) {
+    c.lo = glm::min(c.lo, v.position);
+    c.hi = glm::max(c.hi, v.position);
+  }
+  return c;
+}
+
 void chunk_mesh(Mesh& m, int per_axis) {
   if (per_axis < 1) throw std::invalid_argument("chunk_mesh: per_axis must be >= 1");
   if (m.indices.size() % 3 != 0) throw std::invalid_argument("chunk_mesh: the index count is not a multiple of 3");
-  m.bounds_min = glm::vec3(std::numeric_limits<float>::max());
-  m.bounds_max = glm::vec3(std::numeric_limits<float>::lowest());
-  for (const Vertex& v : m.vertices) {
-    m.bounds_min = glm::min(m.bounds_min, v.position);
-    m.bounds_max = glm::max(m.bounds_max, v.position);
-  }
+  const MeshChunk all = whole_mesh_chunk(m);
+  m.bounds_min = all.lo;
+  m.bounds_max = all.hi;
   m.chunks.clear();
   const size_t n_tri = m.indices.size() / 3;
   if (n_tri == 0) return;

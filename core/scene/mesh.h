@@ -104,6 +104,9 @@ Mesh build_mesh(const MeshSpec& spec, const std::vector<MeshView>& views = {});
 // and `bounds_min/max`. Vertices are not touched; the triangles are the same, drawn in another order.
 void chunk_mesh(Mesh& m, int per_axis = 8);
 
+// The whole mesh as one chunk: every index, and the box of every vertex.
+MeshChunk whole_mesh_chunk(const Mesh& m);
+
 // Height y(x, z) of the surfaces that are height fields ("plane", "wavy", "dunes"); used by the
 // mesh builder and by tests/camera placement. Throws std::invalid_argument for "sphere".
 float height_field(const MeshSpec& spec, float x, float z);

@@ -136,8 +136,7 @@ std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec) {
     const core::FrameCamera cam = spec.path.frame(k, spec.width, spec.height);
     glm::vec3 eye = cam.position;
     if (spec.mesh.motion.moves()) eye = glm::vec3(glm::inverse(spec.mesh.motion.model_at(cam.time)) * glm::vec4(eye, 1.0f));
-    const double half_fov = 0.5 * double(cam.state.fov_y_deg) * 3.14159265358979323846 / 180.0;
-    views.push_back({eye, float(double(spec.height) / (2.0 * std::tan(half_fov)))});
+    views.push_back({eye, float(double(spec.height) / (2.0 * std::tan(0.5 * glm::radians(double(cam.state.fov_y_deg)))))});
   }
   return views;
 }
