@@ -65,6 +65,8 @@ void validate(const MeshSpec& s) {
   if (s.type == "dunes" && (s.octaves < 1 || s.octaves > 16)) bad("octaves must be in [1, 16]");
   if (!(s.max_edge_px >= 0.0f) || !std::isfinite(s.max_edge_px)) bad("max_edge_px must be >= 0");
   if (s.type == "sphere" && s.max_edge_px > 0.0f) bad("max_edge_px applies to height fields only");
+  if (!(s.max_error_px >= 0.0f) || !std::isfinite(s.max_error_px)) bad("max_error_px must be >= 0");
+  if (s.max_error_px > 0.0f && !(s.max_edge_px > 0.0f)) bad("max_error_px needs max_edge_px > 0");
   if (s.type == "sphere" && (s.layers < 1 || !(s.layer_spacing >= 0.0f) || float(s.layers - 1) * s.layer_spacing >= 1.0f))
     bad("layers must be >= 1 and (layers - 1) * layer_spacing < 1 (inner shells need a positive radius)");
 }
@@ -120,23 +122,54 @@ void height_field_mesh(Mesh& m, const MeshSpec& s, const HeightGrad& h_grad) {
   grid_indices(m, 0, n, n, /*flip=*/true, false, false);
 }
 
-// The adaptive grid of MeshSpec::max_edge_px: a restricted quadtree whose leaves are aligned squares
-// of the n x n grid, 2^k grid cells wide (k <= the number of times n divides by 2). `level` holds,
-// for every grid cell, log2 of the width of the leaf that covers it.
+// The adaptive grid of MeshSpec::max_edge_px (and max_error_px): a restricted quadtree whose leaves
+// are aligned squares of the n x n grid, 2^k grid cells wide (k <= the number of times n divides by
+// 2). `level` holds, for every grid cell, log2 of the width of the leaf that covers it.
 void adaptive_height_field_mesh(Mesh& m, const MeshSpec& s, const HeightGrad& h_grad,
                                 const std::vector<MeshView>& views, double h_lo, double h_hi) {
   const int n = s.tessellation;
   int top = 0;  // the widest leaf is 2^top cells
   while (top < 16 && (n >> top) % 2 == 0) ++top;
   const double unit = double(s.size) / double(n), half = 0.5 * double(s.size);
-  // Split a cell while some view sees its edge wider than max_edge_px; the cell's box spans the
-  // field's whole height range (nearer to the eye than the cell itself: errs towards splitting).
+  // The full grid's heights (what a leaf's error is measured against), only when an error bound is set.
+  std::vector<double> height;
+  if (s.max_error_px > 0.0f) {
+    height.resize(size_t(n + 1) * size_t(n + 1));
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) height[size_t(j) * size_t(n + 1) + size_t(i)] = height_field_vertex(s, h_grad, i, j).position.y;
+  }
+  // A bound on how far (vertically) any triangulation of the leaf's own grid points lies from the
+  // full grid over the leaf: twice the largest distance of those points from a plane (here the
+  // plane through the mean of the corners with their mean slopes). Every triangle of either mesh
+  // interpolates points within that distance of the plane, so both surfaces lie within it, and
+  // within twice it of each other; this holds for the leaf's two triangles and for every fan.
+  auto error_bound = [&](int i0, int j0, int w) {
+    auto h = [&](int i, int j) { return height[size_t(j) * size_t(n + 1) + size_t(i)]; };
+    const double h00 = h(i0, j0), h10 = h(i0 + w, j0), h01 = h(i0, j0 + w), h11 = h(i0 + w, j0 + w);
+    const double mean = 0.25 * (h00 + h10 + h01 + h11);
+    const double sx = 0.5 * ((h10 + h11) - (h00 + h01)), sy = 0.5 * ((h01 + h11) - (h00 + h10));
+    double d = 0.0;
+    for (int j = j0; j <= j0 + w; ++j)
+      for (int i = i0; i <= i0 + w; ++i) {
+        const double a = double(i - i0) / w - 0.5, b = double(j - j0) / w - 0.5;
+        d = std::max(d, std::abs(h(i, j) - (mean + a * sx + b * sy)));
+      }
+    return 2.0 * d;
+  };
+  // Split a cell while some view sees its edge wider than max_edge_px and (with max_error_px) its
+  // error bound larger than max_error_px; the cell's box spans the field's whole height range
+  // (nearer to the eye than the cell itself: errs towards splitting).
   auto too_wide = [&](int i0, int j0, int width) {
     const double edge = width * unit;
     const glm::dvec3 lo(-half + i0 * unit, h_lo, -half + j0 * unit), hi = lo + glm::dvec3(edge, h_hi - h_lo, edge);
+    double error = -1.0;  // computed on first need
     for (const MeshView& v : views) {
       const glm::dvec3 e(v.eye), d = e - glm::clamp(e, lo, hi);
-      if (edge * double(v.focal_px) > double(s.max_edge_px) * std::sqrt(glm::dot(d, d))) return true;
+      const double dist = std::sqrt(glm::dot(d, d));
+      if (!(edge * double(v.focal_px) > double(s.max_edge_px) * dist)) continue;
+      if (!(s.max_error_px > 0.0f)) return true;
+      if (error < 0.0) error = error_bound(i0, j0, width);
+      if (error * double(v.focal_px) > double(s.max_error_px) * dist) return true;
     }
     return false;
   };
@@ -380,7 +413,12 @@ MeshSpec MeshSpec::from_json(JsonReader& r) {
     if (float(s.layers - 1) * s.layer_spacing >= 1.0f)
       r.fail("layer_spacing", "(layers - 1) * layer_spacing must be < 1 so that every shell has a positive radius");
   }
-  if (s.type != "sphere") s.max_edge_px = float(r.get_number("max_edge_px", 0.0, 0.0, 1e4));
+  if (s.type != "sphere") {
+    s.max_edge_px = float(r.get_number("max_edge_px", 0.0, 0.0, 1e4));
+    s.max_error_px = float(r.get_number("max_error_px", 0.0, 0.0, 1e4));
+    if (s.max_error_px > 0.0f && !(s.max_edge_px > 0.0f))
+      r.fail("max_error_px", "relaxes max_edge_px where the surface is flat: set max_edge_px > 0 as well");
+  }
   if (auto m = r.optional_child("motion")) s.motion = ObjectMotion::from_json(*m);
   r.finish();
   return s;

@@ -67,6 +67,10 @@ struct Mesh {
 //           run's resolution. Neighbouring cells differ by at most one level and a cell next to a
 //           finer one is a fan around its centre, so the mesh has no cracks; every vertex is one of
 //           the full grid's, with the same attributes (build_mesh with `views`).
+//   plane/wavy/dunes: "max_error_px" (default 0 = off; needs max_edge_px): a merged cell wider
+//           than max_edge_px is kept where it is flat enough: where, from every camera position, a
+//           bound on its vertical distance from the full grid (any of its triangulations) spans at
+//           most this many pixels. Silhouettes and positions stay within it of the full grid's.
 //   any:    "motion": rigid motion of the mesh over time (core/scene/object_motion.h)
 struct MeshSpec {
   std::string type = "plane";
@@ -81,6 +85,7 @@ struct MeshSpec {
   float gain = 0.5f;
   uint32_t seed = 1;
   float max_edge_px = 0.0f;  // > 0: the grid adapts to the camera (height fields; see above)
+  float max_error_px = 0.0f; // > 0: ... and keeps wider cells where they are this flat on screen
   ObjectMotion motion;  // "motion": rigid motion over time (core/scene/object_motion.h); default none
 
   static MeshSpec from_json(JsonReader& r);  // validates; calls r.finish()

@@ -181,10 +181,12 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   core::VkContext ctx(core::ContextOptions{opt.device, opt.validation});
   log << "device: " << ctx.info().name << " (" << ctx.info().type << ", Vulkan " << ctx.info().api_version << ")\n";
   log << "mesh: " << spec.mesh.type << ", " << data.mesh.indices.size() / 3 << " triangles";
-  if (spec.mesh.max_edge_px > 0.0f)
+  if (spec.mesh.max_edge_px > 0.0f) {
     log << " (grid adapted to the camera path at " << spec.width << "x" << spec.height << ", max_edge_px "
-        << spec.mesh.max_edge_px << "; the full grid has " << 2 * size_t(spec.mesh.tessellation) * spec.mesh.tessellation
-        << ")";
+        << spec.mesh.max_edge_px;
+    if (spec.mesh.max_error_px > 0.0f) log << ", max_error_px " << spec.mesh.max_error_px;
+    log << "; the full grid has " << 2 * size_t(spec.mesh.tessellation) * spec.mesh.tessellation << ")";
+  }
   log << "\n";
   const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name);
   const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);

@@ -64,13 +64,18 @@ GlintZirrPixel glint_zirr_pixel(vec3 h, GlintRoughness r) {
 // any normalised weighting of cells converges to beckmann.
 // The reflectance of cell `seed` in half-vector bin `hidx` (lines 16-20);
 // `hue` = rand(C).z.
-vec3 glint_zirr_bin(uvec2 seed, uvec2 hidx, float n_cell, GlintZirrPixel px, float size_variation, float saturation,
-                    float hue) {
+vec3 glint_zirr_bin(uvec2 seed, uvec2 hidx, float n_cell, BinomialSetup level, GlintZirrPixel px,
+                    float size_variation, float saturation, float hue) {
   uvec3 hh = pcg3d(uvec3(seed, pcg3d(uvec3(hidx, GLINT_ZIRR_HALF_SALT)).x));
   vec3 u = glint_open_unit(hh);
   float Cn = n_cell;
-  if (size_variation > 0.0) Cn *= max(abs(1.0 + size_variation * normal_quantile(u.y)), GLINT_MIN_SIZE_FACTOR);
-  float rn = binomial_draw(Cn, px.pmf, u.x, u.z);
+  float rn;
+  if (size_variation > 0.0) {
+    Cn *= max(abs(1.0 + size_variation * normal_quantile(u.y)), GLINT_MIN_SIZE_FACTOR);
+    rn = binomial_draw(Cn, px.pmf, u.x, u.z);
+  } else {
+    rn = binomial_draw(level, u.x, u.z);  // every cell of the level: the same n and P
+  }
   if (!(rn > 0.0)) return vec3(0.0);
   return (rn * px.m0 / Cn) * glint_tint(hue, saturation, rn);
 }
@@ -80,11 +85,12 @@ vec3 glint_zirr_bin(uvec2 seed, uvec2 hidx, float n_cell, GlintZirrPixel px, flo
 // whose centres surround it (bin k's centre at k + 1/2 in units of h_cell),
 // so a glint fades in and out as h moves instead of being redrawn at a bin
 // boundary. Each bin's expectation is P(h) m0, hence the blend's too.
-vec3 glint_zirr_cell(uvec2 seed, float n_cell, GlintZirrPixel px, GlintRoughness r, float size_variation,
-                     float saturation) {
+vec3 glint_zirr_cell(uvec2 seed, float n_cell, BinomialSetup level, GlintZirrPixel px, GlintRoughness r,
+                     float size_variation, float saturation) {
   vec3 uc = pcg3d_unit(pcg3d(uvec3(seed, GLINT_ZIRR_OFFSET_SALT)));
   vec2 harg = px.hp / r.h_cell + uc.xy;
-  if (!r.hv_blend) return glint_zirr_bin(seed, wrapped_floor(harg), n_cell, px, size_variation, saturation, uc.z);
+  if (!r.hv_blend)
+    return glint_zirr_bin(seed, wrapped_floor(harg), n_cell, level, px, size_variation, saturation, uc.z);
   vec2 q = harg - 0.5;
   vec2 f = q - floor(q);
   uvec2 b = wrapped_floor(q);
@@ -92,7 +98,7 @@ vec3 glint_zirr_cell(uvec2 seed, float n_cell, GlintZirrPixel px, GlintRoughness
   for (uint k = 0u; k < 4u; ++k) {
     uvec2 d = uvec2(k & 1u, k >> 1u);
     float w = (d.x == 1u ? f.x : 1.0 - f.x) * (d.y == 1u ? f.y : 1.0 - f.y);
-    if (w > 0.0) acc += w * glint_zirr_bin(seed, b + d, n_cell, px, size_variation, saturation, uc.z);
+    if (w > 0.0) acc += w * glint_zirr_bin(seed, b + d, n_cell, level, px, size_variation, saturation, uc.z);
   }
   return acc;
 }
@@ -130,6 +136,7 @@ GlintZirr glint_zirr(vec2 uv, vec2 dx, vec2 dy, vec3 h, GlintRoughness r, float 
     int level = g == 0 ? fp.level0 : fp.level1;
     float cell = r.s_ref * exp2(float(level));
     float n_cell = exp2(2.0 * float(level)) / (r.stretch.x * r.stretch.y);
+    BinomialSetup level_draws = binomial_setup(n_cell, px.pmf);  // sand/binomial.glsl: once per level
     GlintWalk w = glint_walk(st_uv, st_dx, st_dy, cell);
     vec3 acc = vec3(0.0);
     float wsum = 0.0;
@@ -138,7 +145,8 @@ GlintZirr glint_zirr(vec2 uv, vec2 dx, vec2 dy, vec3 h, GlintRoughness r, float 
         GlintCell c = glint_walk_cell(w, col, row);
         if (!(c.weight > 0.0)) continue;
         z.cells += 1.0;
-        acc += c.weight * glint_zirr_cell(glint_coherent_seed(c.index, level), n_cell, px, r, size_variation, saturation);
+        acc += c.weight * glint_zirr_cell(glint_coherent_seed(c.index, level), n_cell, level_draws, px, r,
+                                          size_variation, saturation);
         wsum += c.weight;
       }
     }

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <vector>
@@ -276,6 +277,41 @@ std::vector<std::array<float, 9>> position_triangles(const Mesh& m) {
   return out;
 }
 
+// An adapted grid of the n x n, `size`-wide square: every vertex is the full grid's vertex at its uv,
+// attribute for attribute; every directed edge has its reverse once, except on the border of the
+// square; all triangles face up; together they cover the square once (projected area).
+void expect_full_grid_vertices_and_watertight(const Mesh& m, const Mesh& full, int n, double size) {
+  const double half = 0.5 * size;
+  ASSERT_EQ(full.vertices.size(), size_t(n + 1) * size_t(n + 1));
+  for (const Vertex& v : m.vertices) {
+    const int i = int(std::lround(v.uv.x * float(n))), j = int(std::lround(v.uv.y * float(n)));
+    ASSERT_EQ(std::memcmp(&v, &full.vertices[size_t(j) * size_t(n + 1) + size_t(i)], sizeof(Vertex)), 0) << i << "," << j;
+  }
+  std::map<std::pair<uint32_t, uint32_t>, int> edges;
+  double area = 0.0;
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    const uint32_t id[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
+    for (int k = 0; k < 3; ++k) ++edges[{id[k], id[(k + 1) % 3]}];
+    const glm::dvec3 a(m.vertices[id[0]].position), b(m.vertices[id[1]].position), c(m.vertices[id[2]].position);
+    const double ny = glm::cross(b - a, c - a).y;
+    EXPECT_GT(ny, 0.0) << "triangle " << t / 3 << " faces down";
+    area += 0.5 * ny;
+  }
+  EXPECT_NEAR(area, size * size, 1e-6 * size * size);
+  auto on_border = [&](uint32_t a, uint32_t b) {
+    const glm::dvec3 p(m.vertices[a].position), q(m.vertices[b].position);
+    auto at = [&](double v) { return std::abs(std::abs(v) - half) < 1e-6; };
+    return (at(p.x) && at(q.x) && p.x == q.x) || (at(p.z) && at(q.z) && p.z == q.z);
+  };
+  int open = 0;
+  for (const auto& [e, count] : edges) {
+    EXPECT_EQ(count, 1) << "edge drawn twice in one direction";
+    const auto rev = edges.find({e.second, e.first});
+    if (rev == edges.end() && !on_border(e.first, e.second)) ++open;
+  }
+  EXPECT_EQ(open, 0) << "edges without a neighbour inside the square (a crack or T-junction)";
+}
+
 }  // namespace
 
 TEST(Mesh, AdaptiveGridIsTheFullGridWhereEveryCellIsSeenClose) {
@@ -302,39 +338,9 @@ TEST_P(AdaptiveGrid, IsWatertightAndCoarseOnlyWhereCellsLookSmall) {
       GetParam() == 0 ? std::vector<MeshView>{{{-26.0f, 4.0f, 3.0f}, 150.0f}, {{0.0f, 60.0f, 0.0f}, 150.0f}}
                       : std::vector<MeshView>{{{0.75f, 0.0f, 1.0f}, 1.0f}};
   const Mesh m = build_mesh(s, views);
-  const double half = 20.0, unit = 40.0 / 128.0;
+  const double unit = 40.0 / 128.0;
 
-  // Every vertex is the full grid's vertex at its uv, attribute for attribute.
-  ASSERT_EQ(full.vertices.size(), 129u * 129u);
-  for (const Vertex& v : m.vertices) {
-    const int i = int(std::lround(v.uv.x * 128.0f)), j = int(std::lround(v.uv.y * 128.0f));
-    ASSERT_EQ(std::memcmp(&v, &full.vertices[size_t(j) * 129 + size_t(i)], sizeof(Vertex)), 0) << i << "," << j;
-  }
-  // Watertight: every directed edge has its reverse once, except on the border of the square; all
-  // triangles face up; together they cover the square once (projected area).
-  std::map<std::pair<uint32_t, uint32_t>, int> edges;
-  double area = 0.0;
-  for (size_t t = 0; t < m.indices.size(); t += 3) {
-    const uint32_t id[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
-    for (int k = 0; k < 3; ++k) ++edges[{id[k], id[(k + 1) % 3]}];
-    const glm::dvec3 a(m.vertices[id[0]].position), b(m.vertices[id[1]].position), c(m.vertices[id[2]].position);
-    const double ny = glm::cross(b - a, c - a).y;
-    EXPECT_GT(ny, 0.0) << "triangle " << t / 3 << " faces down";
-    area += 0.5 * ny;
-  }
-  EXPECT_NEAR(area, 40.0 * 40.0, 1e-6 * 40.0 * 40.0);
-  auto on_border = [&](uint32_t a, uint32_t b) {
-    const glm::dvec3 p(m.vertices[a].position), q(m.vertices[b].position);
-    auto at = [&](double v) { return std::abs(std::abs(v) - half) < 1e-6; };
-    return (at(p.x) && at(q.x) && p.x == q.x) || (at(p.z) && at(q.z) && p.z == q.z);
-  };
-  int open = 0;
-  for (const auto& [e, count] : edges) {
-    EXPECT_EQ(count, 1) << "edge drawn twice in one direction";
-    const auto rev = edges.find({e.second, e.first});
-    if (rev == edges.end() && !on_border(e.first, e.second)) ++open;
-  }
-  EXPECT_EQ(open, 0) << "edges without a neighbour inside the square (a crack or T-junction)";
+  expect_full_grid_vertices_and_watertight(m, full, 128, 40.0);
 
   // Coarser than the full grid, and no triangle wider on screen than allowed, unless it is one of
   // the full grid's: the cell's edge (its longest side seen from above, the cell's diagonal, over
@@ -359,20 +365,100 @@ TEST_P(AdaptiveGrid, IsWatertightAndCoarseOnlyWhereCellsLookSmall) {
 }
 INSTANTIATE_TEST_SUITE_P(Mesh, AdaptiveGrid, ::testing::Values(0, 1));
 
+// max_error_px: the dunes above, 2 px edges allowed, 0.5 px of error. Every point of the full grid
+// lies, on the adapted mesh, within 0.5 px (vertically, over its distance from each eye) of where
+// the full grid has it, wherever the triangle that holds it is wider on screen than 2 px; the mesh
+// is watertight and smaller than the edge rule alone makes it; a plane collapses to two triangles.
+TEST(Mesh, ErrorBoundedGridStaysWithinItsPixelsOfTheFullGrid) {
+  MeshSpec s = spec_of("dunes", 128, 40.0f);
+  const Mesh full = build_mesh(s);
+  s.max_edge_px = 2.0f;
+  const std::vector<MeshView> views = {{{-26.0f, 4.0f, 3.0f}, 150.0f}, {{0.0f, 60.0f, 0.0f}, 150.0f}};
+  const Mesh edge_only = build_mesh(s, views);
+  s.max_error_px = 0.5f;
+  const Mesh m = build_mesh(s, views);
+  expect_full_grid_vertices_and_watertight(m, full, 128, 40.0);
+  EXPECT_LT(m.indices.size(), edge_only.indices.size() * 95 / 100);
+
+  // Each full-grid point, located in the adapted triangle above it (xz barycentrics), with that
+  // triangle's height there.
+  const int n = 128;
+  const double unit = 40.0 / n, half = 20.0;
+  std::vector<double> adapted(size_t(n + 1) * size_t(n + 1), std::nan(""));
+  std::vector<size_t> holder(adapted.size(), 0);
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    glm::dvec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = glm::dvec3(m.vertices[m.indices[t + size_t(k)]].position);
+    const double det = (p[1].x - p[0].x) * (p[2].z - p[0].z) - (p[2].x - p[0].x) * (p[1].z - p[0].z);
+    const int i_lo = int(std::floor((std::min({p[0].x, p[1].x, p[2].x}) + half) / unit + 1e-9));
+    const int i_hi = int(std::ceil((std::max({p[0].x, p[1].x, p[2].x}) + half) / unit - 1e-9));
+    const int j_lo = int(std::floor((std::min({p[0].z, p[1].z, p[2].z}) + half) / unit + 1e-9));
+    const int j_hi = int(std::ceil((std::max({p[0].z, p[1].z, p[2].z}) + half) / unit - 1e-9));
+    for (int j = j_lo; j <= j_hi; ++j)
+      for (int i = i_lo; i <= i_hi; ++i) {
+        const double x = -half + i * unit, z = -half + j * unit;
+        const double b1 = ((x - p[0].x) * (p[2].z - p[0].z) - (p[2].x - p[0].x) * (z - p[0].z)) / det;
+        const double b2 = ((p[1].x - p[0].x) * (z - p[0].z) - (x - p[0].x) * (p[1].z - p[0].z)) / det;
+        if (b1 < -1e-9 || b2 < -1e-9 || b1 + b2 > 1.0 + 1e-9) continue;
+        adapted[size_t(j) * size_t(n + 1) + size_t(i)] = p[0].y + b1 * (p[1].y - p[0].y) + b2 * (p[2].y - p[0].y);
+        holder[size_t(j) * size_t(n + 1) + size_t(i)] = t;
+      }
+  }
+  int checked = 0;
+  double worst = 0.0;  // the largest error seen, in units of max_error_px
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const size_t at = size_t(j) * size_t(n + 1) + size_t(i);
+      ASSERT_FALSE(std::isnan(adapted[at])) << "grid point " << i << "," << j << " is under no triangle";
+      const glm::dvec3 q(full.vertices[at].position);
+      const double err = std::abs(adapted[at] - q.y);
+      // The holding triangle's width as the edge rule measures it (longest side / sqrt 2).
+      double longest = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const glm::dvec3 a(m.vertices[m.indices[holder[at] + size_t(k)]].position);
+        const glm::dvec3 b(m.vertices[m.indices[holder[at] + size_t(k + 1) % 3]].position);
+        longest = std::max(longest, glm::length(glm::dvec2(a.x - b.x, a.z - b.z)));
+      }
+      for (const MeshView& v : views) {
+        const double dist = glm::length(glm::dvec3(v.eye) - q);
+        if (longest / std::sqrt(2.0) * v.focal_px <= 2.0 * dist) continue;  // narrow: the edge rule holds
+        ++checked;
+        worst = std::max(worst, err * v.focal_px / (0.5 * dist));
+        EXPECT_LE(err * v.focal_px, 0.5 * dist * (1.0 + 1e-6)) << "grid point " << i << "," << j;
+      }
+    }
+  EXPECT_GT(checked, 1000) << "too few points rely on the error bound for the test to say anything";
+  EXPECT_GT(worst, 0.05) << "the error bound is never approached";
+  std::printf("  %zu triangles (edge rule alone %zu); %d point-views rely on the bound, worst %.3f of it\n",
+              m.indices.size() / 3, edge_only.indices.size() / 3, checked, worst);
+  if (::testing::Test::HasFailure()) return;
+
+  MeshSpec plane = spec_of("plane", 128, 40.0f);
+  plane.max_edge_px = 2.0f;
+  plane.max_error_px = 0.5f;
+  EXPECT_EQ(build_mesh(plane, views).indices.size(), 6u) << "a flat square is one cell";
+}
+
 TEST(Mesh, AdaptiveGridKeysAndMisuse) {
   nlohmann::json ok = {{"type", "wavy"}, {"max_edge_px", 3}};
   JsonReader r(ok, "scene.json", "mesh");
   EXPECT_EQ(MeshSpec::from_json(r).max_edge_px, 3.0f);
-  for (const nlohmann::json& bad : {nlohmann::json{{"type", "sphere"}, {"max_edge_px", 3}},
-                                    nlohmann::json{{"type", "dunes"}, {"max_edge_px", -1}}}) {
+  for (const auto& [bad, key] : std::vector<std::pair<nlohmann::json, std::string>>{
+           {{{"type", "sphere"}, {"max_edge_px", 3}}, "mesh.max_edge_px"},
+           {{{"type", "dunes"}, {"max_edge_px", -1}}, "mesh.max_edge_px"},
+           {{{"type", "dunes"}, {"max_edge_px", 2}, {"max_error_px", -0.5}}, "mesh.max_error_px"},
+           {{{"type", "wavy"}, {"max_error_px", 0.5}}, "mesh.max_error_px"}}) {
     JsonReader rb(bad, "scene.json", "mesh");
     try {
       MeshSpec::from_json(rb);
       ADD_FAILURE() << "expected ConfigError for " << bad.dump();
     } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find("mesh.max_edge_px"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
     }
   }
+  nlohmann::json with_error = {{"type", "dunes"}, {"max_edge_px", 2}, {"max_error_px", 0.5}};
+  JsonReader re(with_error, "scene.json", "mesh");
+  EXPECT_EQ(MeshSpec::from_json(re).max_error_px, 0.5f);
   MeshSpec s = spec_of("plane", 8);
   s.max_edge_px = 2.0f;
   EXPECT_THROW(build_mesh(s), std::invalid_argument) << "an adaptive grid needs the camera's views";
