@@ -226,6 +226,7 @@ int main(int argc, char** argv) {
       const SceneData tdata = build_scene(tspec, cm);  // the adapted grid
       core::MeshSpec full_spec = tspec.mesh;
       full_spec.max_edge_px = 0.0f;
+      full_spec.max_error_px = 0.0f;
       const core::Mesh full_mesh = core::build_mesh(full_spec);
       core::SceneGpu full_gpu(ctx, full_mesh, tdata.env_texture), adapted_gpu(ctx, tdata.mesh, tdata.env_texture);
       const core::SandParams tp = to_working_space(tspec.variants.front().material, tspec.working_space, cm);
