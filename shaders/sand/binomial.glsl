@@ -57,9 +57,9 @@ float binomial_tail(float i, float n, float lnq, float u, float F_i) {
 // the loop, the tail and the quantile left. On llvmpipe, which runs every
 // branch for every lane, the zirr variant of the default experiment's frame 4
 // (320x180) went from 47.1, 42.9, 43.8 to 43.0, 41.0, 40.7 ms (interleaved
-// runs), with bit-identical images. binomial_draw(n, p, u, u_round) is the two
-// in one; the split changes no value (the same fp32 operations on the same
-// operands).
+// runs), with bit-identical images. binomial_draw(n, p, u, u_round) is one draw:
+// it sets up only the count its rounding gives. The split changes no value
+// (the same fp32 operations on the same operands).
 struct BinomialSetup {
   float n_floor;  // floor(n) of the clamped n
   float n_frac;   // n - floor(n): a draw rounds up where u_round < n_frac
@@ -76,19 +76,8 @@ struct BinomialSetup {
   vec2 kurt;      // k = (1 - 6 q (1 - q))/sigma^2
 };
 
-// Setup of the distribution for the count n_int (floor(n) or floor(n) + 1).
-void binomial_setup_count(float n_int, float q, float pp, float ln_miss, out float mean, out float p0,
-                          out float sigma, out float skew, out float kurt) {
-  mean = n_int * q;
-  p0 = exp(n_int * ln_miss);
-  sigma = sqrt(mean * (1.0 - q));
-  // Used only where mean > 24 (sigma > 3.4); the floor keeps the unused ones finite.
-  float sg = max(sigma, 1e-10);
-  skew = (1.0 - 2.0 * pp) / sg;
-  kurt = (1.0 - 6.0 * q * (1.0 - q)) / (sg * sg);
-}
-
-BinomialSetup binomial_setup(float n_real, float p) {
+// What does not depend on the count.
+BinomialSetup binomial_setup_shared(float n_real, float p) {
   BinomialSetup s;
   float n = n_real > 0.0 ? min(n_real, 1e30) : 0.0;
   s.p = p > 0.0 ? min(p, 1.0) : 0.0;
@@ -98,10 +87,27 @@ BinomialSetup binomial_setup(float n_real, float p) {
   s.q = s.flip ? 1.0 - s.p : s.p;  // exact for p >= 1/2 (Sterbenz)
   s.ratio = s.q / (1.0 - s.q);
   s.lnq = log(max(s.q, 1.17549435e-38));  // < 0; used only where q > 0
-  float ln_miss = safe_log1p(-s.q);
+  return s;
+}
+
+// The distribution of the count n_int (floor(n) or floor(n) + 1).
+void binomial_setup_count(BinomialSetup s, float n_int, float ln_miss, out float mean, out float p0,
+                          out float sigma, out float skew, out float kurt) {
   float pp = s.flip ? s.p : s.q;
-  binomial_setup_count(s.n_floor, s.q, pp, ln_miss, s.mean.x, s.p0.x, s.sigma.x, s.skew.x, s.kurt.x);
-  binomial_setup_count(s.n_floor + 1.0, s.q, pp, ln_miss, s.mean.y, s.p0.y, s.sigma.y, s.skew.y, s.kurt.y);
+  mean = n_int * s.q;
+  p0 = exp(n_int * ln_miss);
+  sigma = sqrt(mean * (1.0 - s.q));
+  // Used only where mean > 24 (sigma > 3.4); the floor keeps the unused ones finite.
+  float sg = max(sigma, 1e-10);
+  skew = (1.0 - 2.0 * pp) / sg;
+  kurt = (1.0 - 6.0 * s.q * (1.0 - s.q)) / (sg * sg);
+}
+
+BinomialSetup binomial_setup(float n_real, float p) {
+  BinomialSetup s = binomial_setup_shared(n_real, p);
+  float ln_miss = safe_log1p(-s.q);
+  binomial_setup_count(s, s.n_floor, ln_miss, s.mean.x, s.p0.x, s.sigma.x, s.skew.x, s.kurt.x);
+  binomial_setup_count(s, s.n_floor + 1.0, ln_miss, s.mean.y, s.p0.y, s.sigma.y, s.skew.y, s.kurt.y);
   return s;
 }
 
@@ -138,8 +144,15 @@ float binomial_draw(BinomialSetup s, float u, float u_round) {
   return clamp(floor(mul_add_once(n_int, pp, sigma * zc + 0.5)), 0.0, n_int);
 }
 
+// One draw: the rounding is decided first, so only the count it gives is set up (and drawn with
+// u_round = 0 against n_frac = 0: not rounded again).
 float binomial_draw(float n_real, float p, float u, float u_round) {
-  return binomial_draw(binomial_setup(n_real, p), u, u_round);
+  BinomialSetup s = binomial_setup_shared(n_real, p);
+  if (u_round < s.n_frac) s.n_floor += 1.0;
+  s.n_frac = 0.0;
+  binomial_setup_count(s, s.n_floor, safe_log1p(-s.q), s.mean.x, s.p0.x, s.sigma.x, s.skew.x, s.kurt.x);
+  s.mean.y = s.mean.x; s.p0.y = s.p0.x; s.sigma.y = s.sigma.x; s.skew.y = s.skew.x; s.kurt.y = s.kurt.x;
+  return binomial_draw(s, u, 0.0);
 }
 
 #endif  // GLINTLAB_SAND_BINOMIAL_GLSL
