@@ -22,6 +22,10 @@
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
 // Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--only surface|terrain|reference|taa|metrics]
+//                       [--smoke]
+// --smoke runs every section once at tiny sizes (its figures mean nothing): the test
+// bench.smoke runs it with the validation layers on (GLINTLAB_VALIDATION=1), so
+// that every path of the bench is exercised in CI; a validation message exits 1.
 #include "core/material/program.h"
 #include "core/util/allocator.h"
 #include "core/render/frame_graph.h"
@@ -38,6 +42,8 @@
 #include "metrics/flip.h"
 #include "metrics/frame_metrics.h"
 #include "metrics/parallel.h"
+
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -115,34 +121,41 @@ int main(int argc, char** argv) {
   std::string device;
   int frames = 10;
   std::string only;
+  std::vector<int> size;
+  bool smoke = false;
+  CLI::App app("glintlab_bench: throughput of the renderer and the metrics on a Vulkan device (GPU timestamps)");
+  app.add_option("--device", device, "Vulkan device: index or part of its name (default: lavapipe)");
+  app.add_option("--frames", frames, "timed frames per case (median; default 10)")->check(CLI::Range(1, 100000));
+  app.add_option("--size", size, "one size W H for the surface, terrain and TAA sections (default: 640x360 and "
+                                 "1280x720)")
+      ->expected(2)
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--only", only, "run one section")
+      ->check(CLI::IsMember({"surface", "terrain", "reference", "taa", "metrics"}));
+  app.add_flag("--smoke", smoke, "every section once at tiny sizes, to check that the bench runs (figures "
+                                 "meaningless)");
+  CLI11_PARSE(app, argc, argv);
   std::vector<std::pair<int, int>> sizes = {{640, 360}, {1280, 720}};
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    if (a == "--device" && i + 1 < argc) device = argv[++i];
-    else if (a == "--frames" && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--only" && i + 1 < argc) only = argv[++i];
-    else if (a == "--size" && i + 2 < argc) {
-      sizes = {{std::atoi(argv[i + 1]), std::atoi(argv[i + 2])}};
-      i += 2;
-    } else {
-      std::cerr << "usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] "
-                   "[--only surface|terrain|reference|taa|metrics]\n";
-      return 2;
-    }
+  if (smoke) {
+    frames = 1;
+    sizes = {{64, 36}};
   }
+  if (!size.empty()) sizes = {{size[0], size[1]}};
   ExperimentSpec spec = ExperimentSpec::from_json(nlohmann::json::parse(kScene), "<bench scene>");
   metrics::ColorManager cm;
   SceneData data = build_scene(spec, cm);
-  core::VkContext ctx(core::ContextOptions{device, false});
+  core::VkContext ctx(core::ContextOptions{device, core::VkContext::validation_requested_by_env()});
   core::SceneGpu scene(ctx, data.mesh, data.env_texture);
   core::MeshSpec coarse_spec = spec.mesh;
   coarse_spec.tessellation = 4;
   const core::Mesh coarse_mesh = core::build_mesh(coarse_spec);
   core::SceneGpu coarse_scene(ctx, coarse_mesh, data.env_texture);
   const char* lp_threads = std::getenv("LP_NUM_THREADS");
-  std::printf("device: %s (LP_NUM_THREADS=%s)\nscene: wavy plane (%zu triangles), orbit-close frame 0, "
+  std::printf("device: %s (LP_NUM_THREADS=%s)%s\nscene: wavy plane (%zu triangles), orbit-close frame 0, "
               "thesis-hdri-match sand with glints; %d timed frames after 2 warm-up (median)\n",
-              ctx.info().name.c_str(), lp_threads ? lp_threads : "unset", data.mesh.indices.size() / 3, frames);
+              ctx.info().name.c_str(), lp_threads ? lp_threads : "unset",
+              ctx.validation_enabled() ? ", validation layers on (timings not representative)" : "",
+              data.mesh.indices.size() / 3, frames);
 
   // ---- 1. surface pass: floor, full material, pruned variants
   const core::SandParams base = to_working_space(spec.variants.front().material, spec.working_space, cm);
@@ -283,7 +296,9 @@ int main(int argc, char** argv) {
     std::printf("\nreference (micro model, grid x grid stratified samples)\n");
     std::printf("  %-20s %-28s %11s %11s %11s %7s\n", "case", "method", "ms/frame", "ms/sample", "1-spp ms",
                 "ratio");
-    for (RefCase rc : {RefCase{640, 360, 16}, RefCase{16, 9, 64}}) {
+    const std::vector<RefCase> ref_cases = smoke ? std::vector<RefCase>{{64, 36, 4}, {16, 9, 8}}
+                                                 : std::vector<RefCase>{{640, 360, 16}, {16, 9, 64}};
+    for (RefCase rc : ref_cases) {
       core::SurfacePassOptions o;
       o.program = ref;
       core::SurfaceRenderer one_spp(ctx, scene, rc.w, rc.h, o);
@@ -331,7 +346,7 @@ int main(int argc, char** argv) {
 
   // ---- 4. metrics of one variant frame
   if (section("metrics")) {
-    const int w = 640, h = 360;
+    const int w = smoke ? 64 : 640, h = smoke ? 36 : 360;
     core::SurfacePassOptions o;
     o.program = core::sand_program(base, data.range, core::ProgramRole::Variant);
     o.motion = true;
@@ -377,6 +392,11 @@ int main(int argc, char** argv) {
     }
     std::printf("  %-16s %8.2f ms  (HDR-FLIP preparing the reference for every variant, as before)\n", "flip, unshared",
                 median(alone));
+  }
+  if (ctx.validation_enabled() && ctx.validation_message_count() > 0) {
+    std::fprintf(stderr, "error: the Vulkan validation layer reported %zu message(s); first: %s\n",
+                 ctx.validation_message_count(), ctx.validation_messages().front().c_str());
+    return 1;
   }
   return 0;
 }
