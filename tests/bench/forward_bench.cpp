@@ -116,7 +116,9 @@ core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int 
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+
+int bench(int argc, char** argv) {
   if (!std::getenv("GLINTLAB_BENCH_DEFAULT_MALLOC")) tune_allocator_for_rendering();  // as the glintlab CLI does
   std::string device;
   int frames = 10;
@@ -399,4 +401,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return bench(argc, argv);
+  } catch (const std::exception& e) {  // a device that is not there, a Vulkan error: said, not aborted
+    std::fflush(stdout);
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
 }
