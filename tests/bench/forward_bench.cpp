@@ -50,7 +50,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <iostream>
 #include <map>
 #include <memory>
 #include <string>
@@ -113,10 +112,6 @@ core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int 
   in.samples = core::samples_for(spec.path, 0, w, h, offsets);
   return in;
 }
-
-}  // namespace
-
-namespace {
 
 int bench(int argc, char** argv) {
   if (!std::getenv("GLINTLAB_BENCH_DEFAULT_MALLOC")) tune_allocator_for_rendering();  // as the glintlab CLI does
