@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Packs the built glintlab and glintlab_bench with the shared libraries they load into one
-tar.xz that runs on another x86-64 Linux machine without Debian's packages: a GPU machine that
+tar.gz that runs on another x86-64 Linux machine without Debian's packages: a GPU machine that
 reaches no package registry and takes at most 64 MiB with a command.
 
 The libraries' closure is about 365 MB, because Debian's OpenImageIO links every image and video
@@ -18,7 +18,7 @@ machine's are older than the ones the binaries were built against.
 
     tests/bench/gpu_bundle.py [--build build] [--out .gpu] [--debs] [--check]
 
-writes OUT/glintlab-gpu.tar.xz (bin/, lib/, lib-fallback/, run.sh, root: the source tree the
+writes OUT/glintlab-gpu.tar.gz (bin/, lib/, lib-fallback/, run.sh, root: the source tree the
 binaries read shaders/, experiments/ and the OCIO config from, which run.sh links to the copy of
 the repository it runs in where that path does not exist). --debs also downloads into OUT/debs/ the
 Vulkan loader and the GL vendor-neutral dispatch packages that an NVIDIA driver's Vulkan ICD needs
@@ -28,7 +28,7 @@ the dynamic loader (`ld.so --list`) that every library but glibc's resolves insi
 On the machine, from a copy of this repository:
 
     for f in .gpu/debs/*.deb; do dpkg -x $f /; done; ldconfig    # only where no loader is there
-    tar xJf .gpu/glintlab-gpu.tar.xz -C /tmp
+    tar xzf .gpu/glintlab-gpu.tar.gz -C /tmp
     /tmp/glintlab-gpu/run.sh glintlab_bench --device nvidia
     /tmp/glintlab-gpu/run.sh glintlab run default --device nvidia --out /tmp/default
 """
@@ -213,8 +213,8 @@ def build(args):
         f.write(RUN_SH)
     os.chmod(os.path.join(top, "run.sh"), 0o755)
     os.makedirs(args.out, exist_ok=True)
-    tar = os.path.join(args.out, "glintlab-gpu.tar.xz")
-    with tarfile.open(tar + ".tmp", "w:xz") as t:
+    tar = os.path.join(args.out, "glintlab-gpu.tar.gz")
+    with tarfile.open(tar + ".tmp", "w:gz") as t:
         t.add(top, arcname="glintlab-gpu")
     os.replace(tar + ".tmp", tar)
     raw = sum(os.path.getsize(os.path.join(dp, f)) for dp, _, fs in os.walk(top) for f in fs)
@@ -259,7 +259,7 @@ def check(tar):
                 if m and m.group(1) not in SYSTEM and not m.group(2).startswith(top + "/"):
                     problems.append(f"{prog}: {m.group(1)} resolves to {m.group(2)}, outside the bundle")
         env = {k: v for k, v in os.environ.items() if k not in ("LD_LIBRARY_PATH", "GLINTLAB_VALIDATION")}
-        env["XDG_CACHE_HOME"] = os.path.join(tmp, "cache")
+        env.setdefault("XDG_CACHE_HOME", os.path.join(tmp, "cache"))  # the caller's shader caches, if any
         runs = [["glintlab_bench", "--smoke"],
                 ["glintlab", "run", "default", "--frames", "2", "--out", os.path.join(tmp, "run"), "--cache",
                  os.path.join(tmp, "refs")]]
