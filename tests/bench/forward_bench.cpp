@@ -4,7 +4,8 @@
 // round-robin so that drift in the machine's load spreads over all of them).
 //   1. Surface pass at 640x360 and 1280x720: the floor (same geometry and
 //      passes, a trivial fragment shader), the full sand material and the
-//      variants with features compiled out; per row ms/frame, Mpix/s, the
+//      variants with features compiled out; per row ms/frame, its spread (the
+//      interquartile range of the frames over their median), Mpix/s, the
 //      ratio to the full material, and what the material itself costs (row
 //      minus floor) and the floor's share of the row. Then floor, full and
 //      far only on the same surface with 32 triangles, their ratios among
@@ -42,6 +43,7 @@
 #include "metrics/flip.h"
 #include "metrics/frame_metrics.h"
 #include "metrics/parallel.h"
+#include "metrics/stats.h"
 
 #include <CLI/CLI.hpp>
 
@@ -100,9 +102,19 @@ struct Case {
   bool cull = true;           // draw only the mesh chunks the view can see
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
+metrics::Statistics statistics(const std::vector<double>& v) {
+  metrics::Statistics s;
+  for (double x : v) s.add(x);
+  return s;
+}
+
+// Nearest-rank median (metrics/stats.h; NaN for no values).
+double median(const std::vector<double>& v) { return statistics(v).percentile(0.5); }
+
+// The interquartile range as a share of the median: how far apart the frames of one row lie.
+double spread(const std::vector<double>& v) {
+  const metrics::Statistics s = statistics(v);
+  return 100.0 * (s.percentile(0.75) - s.percentile(0.25)) / s.percentile(0.5);
 }
 
 core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int w, int h,
@@ -193,8 +205,8 @@ int bench(int argc, char** argv) {
     if (!section("surface")) break;
     const core::FrameInputs one = inputs(spec, data, w, h, {glm::vec2(0.0f)});
     std::printf("\nsurface pass, %dx%d (%.3f Mpix), sky on\n", w, h, double(w) * h * 1e-6);
-    std::printf("  %-34s %9s %9s %7s %11s %11s\n", "variant", "ms/frame", "Mpix/s", "ratio", "material ms",
-                "floor share");
+    std::printf("  %-34s %9s %7s %9s %7s %11s %11s\n", "variant", "ms/frame", "spread", "Mpix/s", "ratio",
+                "material ms", "floor share");
     std::vector<std::unique_ptr<core::SurfaceRenderer>> passes;
     for (const Case& c : cases) {
       core::SurfacePassOptions o;
@@ -218,7 +230,7 @@ int bench(int argc, char** argv) {
       const size_t base_row = c < first_coarse ? 0 : first_coarse;
       const double floor_ms = median(ms[base_row]), full_ms = median(ms[base_row + 1]);
       const double m = median(ms[c]);
-      std::printf("  %-34s %9.2f %9.2f %7.2f %11.2f %10.0f%%\n", cases[c].name.c_str(), m,
+      std::printf("  %-34s %9.2f %6.0f%% %9.2f %7.2f %11.2f %10.0f%%\n", cases[c].name.c_str(), m, spread(ms[c]),
                   double(w) * h * 1e-6 / (m * 1e-3), m / full_ms, m - floor_ms, 100.0 * floor_ms / m);
     }
   }
