@@ -16,7 +16,7 @@ static_assert(sizeof(TaaPush) == 32, "TaaPush must match taa.frag");
 enum Binding : uint32_t { kColor = 0, kMotion, kHistoryIn, kLumaIn };
 }  // namespace
 
-std::vector<std::string> TaaPass::defines(const TaaSettings& s) {
+std::vector<std::string> TaaPass::defines(const TaaSettings& s, bool quad_share) {
   return {"TAA_CLAMP=" + std::to_string(int(s.clamp)),
           "TAA_SPACE=" + std::to_string(int(s.space)),
           "TAA_FILTER=" + std::to_string(int(s.history_filter)),
@@ -24,10 +24,12 @@ std::vector<std::string> TaaPass::defines(const TaaSettings& s) {
           "TAA_VELOCITY=" + std::to_string(int(s.velocity)),
           "TAA_FEEDBACK=" + std::to_string(int(s.feedback)),
           "TAA_HDR=" + std::to_string(int(s.hdr)),
-          std::string("TAA_ANTI_FLICKER=") + (s.anti_flicker ? "1" : "0")};
+          std::string("TAA_ANTI_FLICKER=") + (s.anti_flicker ? "1" : "0"),
+          std::string("TAA_QUAD_SHARE=") + (quad_share ? "1" : "0")};
 }
 
-TaaPass::TaaPass(const VkContext& ctx, TaaSettings settings) : ctx_(ctx), s_(settings) {
+TaaPass::TaaPass(const VkContext& ctx, TaaSettings settings, bool share_quads)
+    : ctx_(ctx), s_(settings), allow_quad_share_(share_quads) {
   if (!(s_.alpha > 0.0 && s_.alpha <= 1.0)) throw std::invalid_argument("taa: alpha must be in (0, 1]");
   std::vector<VkDescriptorSetLayoutBinding> b;
   for (uint32_t i = kColor; i <= kLumaIn; ++i)
@@ -37,17 +39,10 @@ TaaPass::TaaPass(const VkContext& ctx, TaaSettings settings) : ctx_(ctx), s_(set
   // A full-screen fragment pass rather than compute: on llvmpipe a compute pass costs about 12 ns a
   // pixel before any work (a stripped resolve with two fetches and two stores: 2.5-3.2 ms at 640x360).
   // Every pixel's targets are written, so their old contents are not loaded.
-  std::vector<VkFormat> outputs = {kFormat, kFormat};  // taa.color, taa.history
-  if (s_.anti_flicker) outputs.push_back(kFormat);      // taa.luma
-  render_pass_ = make_color_render_pass(ctx, outputs, VK_ATTACHMENT_LOAD_OP_DONT_CARE);
-  ShaderCompiler& sc = default_shader_compiler();
-  CompiledShader vs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
-  CompiledShader fs = sc.compile("passes/taa.frag", ShaderStage::Fragment, defines(s_));
-  ShaderModule vm = make_shader_module(ctx, vs.spirv), fm = make_shader_module(ctx, fs.spirv);
-  VkPipelineColorBlendAttachmentState write{};
-  write.colorWriteMask = 0xf;
-  pipeline_ = make_fullscreen_pipeline(ctx, layout_.get(), render_pass_.get(), vm.get(), fm.get(),
-                                       std::vector<VkPipelineColorBlendAttachmentState>(outputs.size(), write));
+  outputs_ = {kFormat, kFormat};                 // taa.color, taa.history
+  if (s_.anti_flicker) outputs_.push_back(kFormat);  // taa.luma
+  render_pass_ = make_color_render_pass(ctx, outputs_, VK_ATTACHMENT_LOAD_OP_DONT_CARE);
+  // The pipeline waits for setup(): whether quads can share fetches depends on the image size.
   // texelFetch only: the sampler never filters, but combined image samplers need one.
   VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   si.magFilter = si.minFilter = VK_FILTER_NEAREST;
@@ -70,7 +65,22 @@ void TaaPass::declare(PassIO& io) const {
   }
 }
 
+void TaaPass::build_pipeline(bool quad_share) {
+  ShaderCompiler& sc = default_shader_compiler();
+  CompiledShader vs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
+  CompiledShader fs = sc.compile("passes/taa.frag", ShaderStage::Fragment, defines(s_, quad_share));
+  ShaderModule vm = make_shader_module(ctx_, vs.spirv), fm = make_shader_module(ctx_, fs.spirv);
+  VkPipelineColorBlendAttachmentState write{};
+  write.colorWriteMask = 0xf;
+  pipeline_ = make_fullscreen_pipeline(ctx_, layout_.get(), render_pass_.get(), vm.get(), fm.get(),
+                                       std::vector<VkPipelineColorBlendAttachmentState>(outputs_.size(), write));
+  quad_share_ = quad_share;
+}
+
 void TaaPass::setup(const TargetSet& t) {
+  // Whole 2x2 quads cover an image of even width and height exactly (passes/taa.frag, TAA_QUAD_SHARE).
+  const bool quad = allow_quad_share_ && ctx_.fragment_quad_operations() && t.width() % 2 == 0 && t.height() % 2 == 0;
+  if (!pipeline_.get() || quad != quad_share_) build_pipeline(quad);
   for (int slot = 0; slot < 2; ++slot) {
     VkDescriptorSet set = sets_[slot].set;
     auto sampled = [&](uint32_t binding, const Image2D& img) {

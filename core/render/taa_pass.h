@@ -18,7 +18,10 @@ namespace glintlab::core {
 
 class TaaPass final : public Pass {
  public:
-  TaaPass(const VkContext& ctx, TaaSettings settings);
+  // share_quads: where the image's width and height are even and the device has quad operations in
+  // fragment shaders, the pixels of each 2x2 quad share their neighbourhood fetches (TAA_QUAD_SHARE in
+  // passes/taa.frag; the same bits as fetching every texel, tested); false always fetches.
+  TaaPass(const VkContext& ctx, TaaSettings settings, bool share_quads = true);
 
   std::string name() const override { return "taa"; }
   void declare(PassIO& io) const override;
@@ -26,12 +29,19 @@ class TaaPass final : public Pass {
   void record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet& targets) override;
 
   const TaaSettings& settings() const { return s_; }
+  // Whether the pipeline built for the current targets shares fetches within quads.
+  bool shares_quads() const { return quad_share_; }
   // The compile-time defines of the resolve shader for these settings.
-  static std::vector<std::string> defines(const TaaSettings& s);
+  static std::vector<std::string> defines(const TaaSettings& s, bool quad_share);
 
  private:
+  void build_pipeline(bool quad_share);
+
   const VkContext& ctx_;
   TaaSettings s_;
+  bool allow_quad_share_ = true;
+  bool quad_share_ = false;
+  std::vector<VkFormat> outputs_;
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;
   RenderPass render_pass_;

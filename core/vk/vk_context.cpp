@@ -188,6 +188,14 @@ VkContext::VkContext(const ContextOptions& options) : validation_(options.valida
     info_ = infos[chosen];
     vkGetPhysicalDeviceProperties(physical_, &props_);
     vkGetPhysicalDeviceMemoryProperties(physical_, &mem_props_);
+    if (props_.apiVersion >= VK_API_VERSION_1_1) {
+      VkPhysicalDeviceSubgroupProperties sub{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+      VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+      p2.pNext = &sub;
+      vkGetPhysicalDeviceProperties2(physical_, &p2);
+      fragment_quad_ops_ = (sub.supportedStages & VK_SHADER_STAGE_FRAGMENT_BIT) &&
+                           (sub.supportedOperations & VK_SUBGROUP_FEATURE_QUAD_BIT);
+    }
 
     uint32_t nq = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &nq, nullptr);

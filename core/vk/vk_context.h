@@ -67,6 +67,8 @@ class VkContext {
 
   // Whether the device blends colour attachments independently (enabled when supported).
   bool independent_blend() const { return independent_blend_; }
+  // Whether fragment shaders may use subgroup quad operations (GL_KHR_shader_subgroup_quad).
+  bool fragment_quad_operations() const { return fragment_quad_ops_; }
 
   uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags flags) const;
   bool format_supports(VkFormat format, VkFormatFeatureFlags features) const;
@@ -96,6 +98,7 @@ class VkContext {
   DeviceInfo info_;
   bool validation_ = false;
   bool independent_blend_ = false;
+  bool fragment_quad_ops_ = false;
   mutable std::mutex messages_mutex_;
   std::vector<std::string> messages_;
 };

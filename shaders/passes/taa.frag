@@ -20,6 +20,13 @@
 // llvmpipe a compute pass costs about 12 ns a pixel before it does any work
 // (core/render/taa_pass.cpp).
 
+#ifndef TAA_QUAD_SHARE
+#define TAA_QUAD_SHARE 0
+#endif
+#if TAA_QUAD_SHARE
+#extension GL_KHR_shader_subgroup_quad : require
+#endif
+
 layout(set = 0, binding = 0) uniform sampler2D color_tex;     // this frame, jittered, RGBA32F
 layout(set = 0, binding = 1) uniform sampler2D motion_tex;    // common/motion.glsl layout
 layout(set = 0, binding = 2) uniform sampler2D history_tex;   // last frame's resolve: rgb, a = distance
@@ -126,6 +133,45 @@ float space_luma(vec3 y) {
 
 vec4 fetch(sampler2D t, ivec2 p) { return texelFetch(t, clamp(p, ivec2(0), g_size - 1), 0); }
 
+// A colour as the neighbourhood box sees it: HDR-mapped, in box space.
+vec3 box_colour(vec4 c) { return to_space(hdr_forward(max(c.rgb, vec3(0.0)))); }
+
+#if TAA_QUAD_SHARE
+// The 3x3 neighbourhood of every pixel of a 2x2 quad lies in the quad's 4x4
+// block of texels: each pixel fetches the 2x2 of it on its own side (itself and
+// its neighbours away from the quad's centre, o = (+-1, +-1)) and takes the
+// five on the other side from the quad's other pixels, whose own fetches they
+// are (a quad swap: the same texel, the same arithmetic, so the same bits).
+// 4 fetches of colour and 4 of motion a pixel instead of 9 + 9; on llvmpipe a
+// fetch costs about 3 % of the resolve. Needs whole quads: the pass sets
+// TAA_QUAD_SHARE only for even image sizes (every quad of the full-screen
+// triangle then lies inside the image) and devices with quad operations in
+// fragment shaders. T is vec3 (colours) or vec4 (motion); p the pixel.
+#define QUAD_NEIGHBOURHOOD(T, p, centre, fetch_box, o, N)                                   \
+  {                                                                                         \
+    T x_ = fetch_box(p + ivec2(o.x, 0)), y_ = fetch_box(p + ivec2(0, o.y)),                 \
+      xy_ = fetch_box(p + o);                                                               \
+    /* first N[sy + 1][sx + 1] = the texel at (sx o.x, sy o.y) from this pixel */          \
+    N[1][1] = centre; N[1][2] = x_; N[2][1] = y_; N[2][2] = xy_;                            \
+    N[1][0] = subgroupQuadSwapHorizontal(centre); N[2][0] = subgroupQuadSwapHorizontal(y_); \
+    N[0][1] = subgroupQuadSwapVertical(centre); N[0][2] = subgroupQuadSwapVertical(x_);     \
+    N[0][0] = subgroupQuadSwapDiagonal(centre);                                             \
+    /* to N[dy + 1][dx + 1], the texel at (dx, dy): mirrored where o points left or up */   \
+    for (int r_ = 0; r_ < 3; ++r_) {                                                        \
+      T a_ = N[r_][0], b_ = N[r_][2];                                                       \
+      N[r_][0] = o.x > 0 ? a_ : b_;                                                         \
+      N[r_][2] = o.x > 0 ? b_ : a_;                                                         \
+    }                                                                                       \
+    for (int c_ = 0; c_ < 3; ++c_) {                                                        \
+      T a_ = N[0][c_], b_ = N[2][c_];                                                       \
+      N[0][c_] = o.y > 0 ? a_ : b_;                                                         \
+      N[2][c_] = o.y > 0 ? b_ : a_;                                                         \
+    }                                                                                       \
+  }
+vec3 fetch_box_colour(ivec2 q) { return box_colour(fetch(color_tex, q)); }
+vec4 fetch_motion(ivec2 q) { return fetch(motion_tex, q); }
+#endif
+
 // The history around continuous pixel position q (texel centres at +0.5):
 // i0 = floor(q - 0.5), f = the fraction of q - 0.5 past i0, and the 2x2
 // texels i0 + (0|1, 0|1) (rgb, a = the distance kept with the history), which
@@ -202,22 +248,34 @@ void main() {
 
   // ---- current neighbourhood (HDR-mapped, in box space) and motion
   vec4 centre_px = fetch(color_tex, p);
-  vec3 cur = to_space(hdr_forward(max(centre_px.rgb, vec3(0.0))));
+  vec3 cur = box_colour(centre_px);
   vec3 lo = cur, hi = cur;
   vec3 nb[9];
   vec4 mc = fetch(motion_tex, p);
   vec2 v = mc.xy;
   float best_d = mc.z > 0.0 ? mc.z : 3.4e38, best_len = dot(mc.xy, mc.xy);
   nb[4] = cur;  // the centre: its colour and motion are fetched above (on llvmpipe a fetch is ~3 % of the resolve)
+#if TAA_QUAD_SHARE
+  ivec2 out_dir = 2 * (p & 1) - 1;  // away from the centre of this pixel's quad
+  vec3 qc[3][3];
+  vec4 qm[3][3];
+  QUAD_NEIGHBOURHOOD(vec3, p, cur, fetch_box_colour, out_dir, qc)
+  QUAD_NEIGHBOURHOOD(vec4, p, mc, fetch_motion, out_dir, qm)
+#endif
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       if (dx == 0 && dy == 0) continue;  // the initial values above: the same box, and no longer motion
+#if TAA_QUAD_SHARE
+      vec3 s = qc[dy + 1][dx + 1];
+      vec4 mo = qm[dy + 1][dx + 1];
+#else
       ivec2 o = p + ivec2(dx, dy);
-      vec3 s = to_space(hdr_forward(max(fetch(color_tex, o).rgb, vec3(0.0))));
+      vec3 s = box_colour(fetch(color_tex, o));
+      vec4 mo = fetch(motion_tex, o);
+#endif
       lo = min(lo, s);
       hi = max(hi, s);
       nb[(dy + 1) * 3 + dx + 1] = s;
-      vec4 mo = fetch(motion_tex, o);
 #if TAA_VELOCITY == VELOCITY_CLOSEST_DEPTH
       float d = mo.z > 0.0 ? mo.z : 3.4e38;  // the sky is farthest
       if (d < best_d) { best_d = d; v = mo.xy; }
@@ -288,7 +346,7 @@ void main() {
   float a = 1.0;
   vec4 lumas = vec4(0.0);
   if (valid) {
-    vec3 raw = to_space(hdr_forward(max(hist_lin, vec3(0.0))));
+    vec3 raw = box_colour(vec4(hist_lin, 0.0));
     vec3 h = raw;
 #if TAA_CLAMP == CLAMP_MINMAX
     h = clamp(raw, lo, hi);

@@ -1,14 +1,25 @@
 // TAA and flicker end to end through the runner (real Vulkan on lavapipe,
 // validation on): every TAA option compiles, runs and lands in frames.csv;
+// the resolve's quads that share their neighbourhood fetches give the bits of
+// fetching every texel;
 // under a static camera TAA without rectification converges toward the
 // reference; and on orbits over glinting sand the flicker ratio ranks one
 // sample per pixel above 2x2 above 4x4 supersampling, all above the truth.
+#include "core/render/frame_graph.h"
+#include "core/render/sample_schedule.h"
+#include "core/render/surface_pass.h"
+#include "core/render/taa_pass.h"
 #include "experiments/runner/runner.h"
+#include "experiments/spec/experiment_spec.h"
+#include "experiments/spec/scene_setup.h"
+#include "metrics/color/color_manager.h"
 
 #include "tests/support/temp_dir.h"
+#include "tests/support/vk_test_util.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -180,5 +191,71 @@ TEST(Taa, FlickerRatioRanksSupersamplingOnGlintingOrbitsAtTwoSpeeds) {
     EXPECT_GT(f1, f2) << speed;
     EXPECT_GT(f2, f4) << speed;
     EXPECT_GT(f4, 1.0) << speed;
+  }
+}
+
+// passes/taa.frag with TAA_QUAD_SHARE: the pixels of a 2x2 quad take five of
+// their nine neighbours' colours and motions from the other pixels of the
+// quad. Over a moving, jittered orbit of glinting sand (history, disocclusions,
+// the variance box, every velocity choice, anti-flicker's lumas) the resolve
+// must give exactly the bits of the pass that fetches every texel. A neighbour
+// taken from the wrong pixel of the quad (a mirrored or swapped direction)
+// changes the box, the mean and variance or the chosen motion, and the image.
+// An odd image size leaves the sharing off.
+TEST(Taa, QuadsSharingTheirFetchesGiveTheBitsOfFetchingEveryTexel) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  ASSERT_TRUE(ctx.fragment_quad_operations()) << "lavapipe has quad operations in fragment shaders";
+  for (auto [w, h] : {std::pair{64, 36}, std::pair{63, 35}}) {
+    json e = glint_scene(w, h, orbit(4.0, 6, 40));
+    e["variants"] = json::array({json{{"name", "taa"}, {"aa", "taa"}}});
+    const ExperimentSpec spec = ExperimentSpec::from_json(e, "inline-test");
+    const SceneData data = build_scene(spec, metrics::ColorManager());
+    core::SceneGpu scene(ctx, data.mesh, data.env_texture);
+    const core::MaterialProgram program =
+        core::sand_program(spec.variants[0].material, data.range, core::ProgramRole::Variant);
+    core::TaaSettings longest, closest, centre;
+    longest.dering = true;
+    longest.anti_flicker = true;
+    closest.velocity = core::TaaVelocity::ClosestDepth;
+    closest.clamp = core::TaaClamp::MinMax;
+    centre.velocity = core::TaaVelocity::Center;
+    centre.space = core::TaaSpace::Rgb;
+    for (const core::TaaSettings& settings : {longest, closest, centre}) {
+      std::unique_ptr<core::FrameGraph> graphs[2];
+      const core::TaaPass* taa[2] = {nullptr, nullptr};
+      for (int share = 0; share < 2; ++share) {
+        graphs[share] = std::make_unique<core::FrameGraph>(ctx, w, h);
+        core::SurfacePassOptions o;
+        o.program = program;
+        o.single_sample = true;
+        o.motion = true;
+        graphs[share]->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
+        auto pass = std::make_unique<core::TaaPass>(ctx, settings, share == 1);
+        taa[share] = pass.get();
+        graphs[share]->add(std::move(pass));
+        graphs[share]->build({"taa.color"});
+      }
+      const bool even = w % 2 == 0 && h % 2 == 0;
+      EXPECT_FALSE(taa[0]->shares_quads());
+      EXPECT_EQ(taa[1]->shares_quads(), even) << w << "x" << h;
+      size_t lit = 0;
+      for (int k = 0; k < spec.frames; ++k) {
+        core::FrameInputs in;
+        in.frame = k;
+        in.uniforms = frame_uniforms(spec, data, k);
+        in.samples = core::samples_for(spec.path, k, w, h, {core::jitter_offset(settings.jitter, k)});
+        const Image a = graphs[0]->execute(in).images.at("taa.color");
+        const Image b = graphs[1]->execute(in).images.at("taa.color");
+        ASSERT_EQ(a.data.size(), b.data.size());
+        size_t differ = 0;
+        for (size_t i = 0; i < a.data.size(); ++i) {
+          differ += std::memcmp(&a.data[i], &b.data[i], sizeof(float)) != 0;
+          lit += a.data[i] > 0.0f;
+        }
+        EXPECT_EQ(differ, 0u) << w << "x" << h << " frame " << k;
+      }
+      EXPECT_GT(lit, size_t(w) * h) << "the frames must show something";
+    }
   }
 }
