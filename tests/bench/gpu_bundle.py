@@ -59,7 +59,9 @@ def run(cmd):
 
 def soname_paths():
     paths = {}
-    for line in run(["ldconfig", "-p"]).splitlines():
+    # /sbin is not on an ordinary user's PATH on Debian
+    ldconfig = shutil.which("ldconfig") or "/sbin/ldconfig"
+    for line in run([ldconfig, "-p"]).splitlines():
         m = re.match(r"\s*(\S+) \(([^)]*)\) => (\S+)", line)
         if m and "x86-64" in m.group(2) and m.group(1) not in paths:
             paths[m.group(1)] = m.group(3)
@@ -156,7 +158,8 @@ if [ "$(printf '%s\n%s\n' "$(cat "$here/needs-glibc")" "$glibc" | sort -V | head
   echo "run.sh: glibc $glibc is older than the $(cat "$here/needs-glibc") this bundle needs" >&2; exit 2
 fi
 libs=$here/lib
-sys_cxx=$(ldconfig -p | sed -n 's/.*libstdc++\.so\.6 (libc6,x86-64) => //p' | head -n1)
+ldconfig=$(command -v ldconfig || echo /sbin/ldconfig)
+sys_cxx=$("$ldconfig" -p | sed -n 's/.*libstdc++\.so\.6 (libc6,x86-64) => //p' | head -n1)
 if [ -z "$sys_cxx" ] || ! grep -qa "GLIBCXX_$(cat "$here/needs-glibcxx")" "$sys_cxx"; then libs=$libs:$here/lib-fallback; fi
 export XDG_CACHE_HOME=${XDG_CACHE_HOME:-/tmp/glintlab-cache}
 nv=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json  # where the GPU machines keep NVIDIA's ICD
