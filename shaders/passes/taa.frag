@@ -134,7 +134,7 @@ float space_luma(vec3 y) {
 vec4 fetch(sampler2D t, ivec2 p) { return texelFetch(t, clamp(p, ivec2(0), g_size - 1), 0); }
 
 // A colour as the neighbourhood box sees it: HDR-mapped, in box space.
-vec3 box_colour(vec4 c) { return to_space(hdr_forward(max(c.rgb, vec3(0.0)))); }
+vec3 box_colour(vec3 c) { return to_space(hdr_forward(max(c, vec3(0.0)))); }
 
 #if TAA_QUAD_SHARE
 // The 3x3 neighbourhood of every pixel of a 2x2 quad lies in the quad's 4x4
@@ -168,7 +168,7 @@ vec3 box_colour(vec4 c) { return to_space(hdr_forward(max(c.rgb, vec3(0.0)))); }
       N[2][c_] = o.y > 0 ? b_ : a_;                                                         \
     }                                                                                       \
   }
-vec3 fetch_box_colour(ivec2 q) { return box_colour(fetch(color_tex, q)); }
+vec3 fetch_box_colour(ivec2 q) { return box_colour(fetch(color_tex, q).rgb); }
 vec4 fetch_motion(ivec2 q) { return fetch(motion_tex, q); }
 #endif
 
@@ -248,7 +248,7 @@ void main() {
 
   // ---- current neighbourhood (HDR-mapped, in box space) and motion
   vec4 centre_px = fetch(color_tex, p);
-  vec3 cur = box_colour(centre_px);
+  vec3 cur = box_colour(centre_px.rgb);
   vec3 lo = cur, hi = cur;
   vec3 nb[9];
   vec4 mc = fetch(motion_tex, p);
@@ -270,7 +270,7 @@ void main() {
       vec4 mo = qm[dy + 1][dx + 1];
 #else
       ivec2 o = p + ivec2(dx, dy);
-      vec3 s = box_colour(fetch(color_tex, o));
+      vec3 s = box_colour(fetch(color_tex, o).rgb);
       vec4 mo = fetch(motion_tex, o);
 #endif
       lo = min(lo, s);
@@ -346,7 +346,7 @@ void main() {
   float a = 1.0;
   vec4 lumas = vec4(0.0);
   if (valid) {
-    vec3 raw = box_colour(vec4(hist_lin, 0.0));
+    vec3 raw = box_colour(hist_lin);
     vec3 h = raw;
 #if TAA_CLAMP == CLAMP_MINMAX
     h = clamp(raw, lo, hi);
