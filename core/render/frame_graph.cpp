@@ -248,7 +248,10 @@ FrameResult FrameGraph::execute(const FrameInputs& in) {
   for (const std::string& name : g.readback) {
     Impl::Target& t = g.targets.at(name);
     const Image2D& img = t.img[t.current];
-    Image im(g.w, g.h, int(channel_count(img.format())));
+    Image im;  // not Image(w, h, c): its zero-filled pixels would be overwritten at once
+    im.width = g.w;
+    im.height = g.h;
+    im.channels = int(channel_count(img.format()));
     im.data = unpack_readback(img, t.staging);
     out.images[name] = std::move(im);
   }
