@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace glintlab;
@@ -135,4 +137,27 @@ TEST(Readback, HalfFloatTargetsAreWidenedExactly) {
   auto px = core::read_back(ctx, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
   ASSERT_EQ(px.size(), size_t(37) * 11 * 4);
   for (size_t i = 0; i < px.size(); ++i) ASSERT_EQ(px[i], v[i % 4]) << i;
+}
+
+TEST(Readback, Rgba32fPixelsComeBackInPlaceWithAndWithoutRowPadding) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  // Width 16: rows of 256 bytes, copied in one piece; width 17: rows padded
+  // to 512 bytes in the staging buffer, copied row by row. Every value is
+  // distinct (and some are negative or not finite), so a row or pixel read
+  // from the wrong place, or a value not copied, is seen.
+  for (uint32_t w : {16u, 17u}) {
+    const uint32_t h = 5;
+    EXPECT_EQ(core::padded_row_pitch(w, VK_FORMAT_R32G32B32A32_SFLOAT) == VkDeviceSize(w) * 16, w == 16u) << w;
+    core::Image2D img(ctx, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    std::vector<float> px(size_t(w) * h * 4);
+    for (size_t i = 0; i < px.size(); ++i) px[i] = (i % 7 == 3 ? -1.0f : 1.0f) * (float(i) + 0.25f);
+    px[5] = std::numeric_limits<float>::infinity();
+    px[px.size() - 2] = -0.0f;
+    core::upload_rgba32f_mips(ctx, img, {px});
+    const std::vector<float> back = core::read_back(ctx, img, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    ASSERT_EQ(back.size(), px.size()) << w;
+    EXPECT_EQ(std::memcmp(back.data(), px.data(), px.size() * sizeof(float)), 0) << w;
+  }
 }
