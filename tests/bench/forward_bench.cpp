@@ -75,24 +75,6 @@ const char* kScene = R"({
   "variants": [{"name": "no-aa"}, {"name": "taa", "aa": "taa"}]
 })";
 
-// The default experiment's terrain (dunes, 51200 triangles in the full grid) and flyover, with the
-// grid adapted to the camera path at 4 px, kept coarser where flat to 0.5 px.
-const char* kTerrain = R"({
-  "name": "bench-terrain",
-  "resolution": [320, 180],
-  "scene": {
-    "mesh": {"type": "dunes", "size": 80, "tessellation": 160, "max_edge_px": 4, "max_error_px": 0.5, "amplitude": 3,
-             "wavelength": 24,
-             "octaves": 3, "gain": 0.4, "seed": 3},
-    "sky": {"turbidity": 2.2, "sky_intensity": 0.45, "sun_elevation_deg": 22, "sun_azimuth_deg": 40, "sun_intensity": 5}
-  },
-  "camera_path": {"type": "flyover", "fps": 30, "frames": 8, "start": [-30, -4], "direction": [1, 0.25],
-                  "speed": 3, "height": 5, "pitch_deg": 22, "fov": 50, "far": 1000},
-  "material": {"preset": "thesis-hdri-match", "noise_scale": 120, "glint_sigma": 0.002, "I_glints": [20, 20, 20],
-               "sigmoid_a": 2, "sigmoid_b": 1000},
-  "variants": [{"name": "no-aa"}]
-})";
-
 struct Case {
   std::string name;
   core::MaterialProgram program;
@@ -242,7 +224,8 @@ int bench(int argc, char** argv) {
     std::vector<std::pair<int, int>> tsizes = sizes;
     if (tsizes.size() > 1) tsizes = {{320, 180}, {1280, 720}};
     for (auto [w, h] : tsizes) {
-      ExperimentSpec tspec = ExperimentSpec::from_json(nlohmann::json::parse(kTerrain), "<bench terrain>");
+      // The default experiment itself (its dunes, flyover and material), at this size.
+      ExperimentSpec tspec = ExperimentSpec::load(resolve_experiment_path("default"));
       tspec.width = w;
       tspec.height = h;
       const SceneData tdata = build_scene(tspec, cm);  // the adapted grid
@@ -283,8 +266,9 @@ int bench(int argc, char** argv) {
         for (size_t c = 0; c < tcases.size(); ++c)
           tms[c].push_back(tpasses[c]->render(in.uniforms, in.samples).timings[0].gpu_ms);
       std::printf("\nterrain %dx%d: the default experiment's dunes, flyover frame 4 (full grid %zu triangles, "
-                  "adapted at max_edge_px 4, max_error_px 0.5: %zu)\n",
-                  w, h, full_mesh.indices.size() / 3, tdata.mesh.indices.size() / 3);
+                  "adapted at max_edge_px %g, max_error_px %g: %zu)\n",
+                  w, h, full_mesh.indices.size() / 3, double(tspec.mesh.max_edge_px), double(tspec.mesh.max_error_px),
+                  tdata.mesh.indices.size() / 3);
       std::printf("  %-40s %9s %11s %7s\n", "case", "ms/frame", "triangles", "ratio");
       for (size_t c = 0; c < tcases.size(); ++c) {
         const size_t first = c < 3 ? 0 : 3;  // ratio to the full grid with every chunk drawn
