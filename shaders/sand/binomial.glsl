@@ -144,14 +144,13 @@ float binomial_draw(BinomialSetup s, float u, float u_round) {
   return clamp(floor(mul_add_once(n_int, pp, sigma * zc + 0.5)), 0.0, n_int);
 }
 
-// One draw: the rounding is decided first, so only the count it gives is set up (and drawn with
-// u_round = 0 against n_frac = 0: not rounded again).
+// One draw: the rounding is decided first, so only the count it gives is set up (in the .x
+// fields), and drawn with u_round = 0 against n_frac = 0: not rounded again, the .y fields unread.
 float binomial_draw(float n_real, float p, float u, float u_round) {
   BinomialSetup s = binomial_setup_shared(n_real, p);
   if (u_round < s.n_frac) s.n_floor += 1.0;
   s.n_frac = 0.0;
   binomial_setup_count(s, s.n_floor, safe_log1p(-s.q), s.mean.x, s.p0.x, s.sigma.x, s.skew.x, s.kurt.x);
-  s.mean.y = s.mean.x; s.p0.y = s.p0.x; s.sigma.y = s.sigma.x; s.skew.y = s.skew.x; s.kurt.y = s.kurt.x;
   return binomial_draw(s, u, 0.0);
 }
 
