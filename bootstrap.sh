@@ -9,7 +9,7 @@ PKGS=(
   libopenimageio-dev openimageio-tools
   libopencolorio-dev opencolorio-tools
   libgtest-dev
-  nlohmann-json3-dev libcli11-dev libxxhash-dev ninja-build
+  nlohmann-json3-dev libcli11-dev libxxhash-dev libopencv-video-dev ninja-build
   fonts-dejavu-core
   clang libclang-rt-14-dev llvm
   python3 python3-numpy python3-matplotlib python3-pil chromium  # report (experiments/report/) and its browser test

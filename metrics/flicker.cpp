@@ -150,10 +150,11 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
   std::vector<double> pqt = perceptual_luminance_plane(yt, w, h);
   std::optional<FlickerFrame> result;
   if (pushed_ > 0) {
+    const std::vector<float> own_adaptation = adaptation_luminance(test_xyz);
     const std::vector<Reprojected> warp = reproject(motion, prev_dist_);
     // Sums per row in parallel, then over rows in order: the same result for any thread count.
     struct Row {
-      double ct = 0, cr = 0, emc = 0, e = 0, dt = 0, dr = 0;
+      double ct = 0, cr = 0, cs = 0, emc = 0, e = 0, dt = 0, dr = 0;
       std::size_t valid = 0, disoccluded = 0, background = 0;
     };
     std::vector<Row> rows(static_cast<size_t>(h));
@@ -195,13 +196,14 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
         const double denom = double(ref.adaptation[i]) + kContrastEpsilon;
         row.ct += std::abs(double(yt[i]) - t_prev) / denom;
         row.cr += std::abs(double(ref.y[i]) - r_prev) / denom;
+        row.cs += std::abs(double(yt[i]) - t_prev) / (double(own_adaptation[i]) + kContrastEpsilon);
         row.emc += std::abs((pqt[i] - ref.pq[i]) - (pq_t_prev - pq_r_prev));
       }
     });
     FlickerFrame f;
-    double s_ct = 0, s_cr = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0;
+    double s_ct = 0, s_cr = 0, s_cs = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0;
     for (const Row& r : rows) {
-      s_ct += r.ct, s_cr += r.cr, s_emc += r.emc, s_e += r.e, s_dt += r.dt, s_dr += r.dr;
+      s_ct += r.ct, s_cr += r.cr, s_cs += r.cs, s_emc += r.emc, s_e += r.e, s_dt += r.dt, s_dr += r.dr;
       f.valid_px += r.valid, f.disoccluded_px += r.disoccluded, f.background_px += r.background;
     }
     const double inv_n = n ? 1.0 / double(n) : 0.0;
@@ -210,6 +212,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
     f.frame_diff_ratio = flicker_ratio(s_dt * inv_n, s_dr * inv_n);
     f.mean_contrast_test = s_ct * inv_v;
     f.mean_contrast_ref = s_cr * inv_v;
+    f.flicker_contrast = s_cs * inv_v;
     f.temporal_error_mc = s_emc * inv_v;
     f.flicker_ratio = flicker_ratio(f.mean_contrast_test, f.mean_contrast_ref);
     frames_.push_back(f);

@@ -36,6 +36,10 @@
 //   temporal_error_mc = the same along the motion (unmasked pixels): mean |e_t(p) - e_{t-1}(p - v)|
 //   frame_diff_ratio  = mean |ΔT| / mean |ΔR| at a fixed pixel in PQ (the former flicker ratio; it
 //                       measures content moving across pixels, kept for comparison only)
+//   flicker_contrast  = mean |ΔT_t(p)| / (Y_a,T(p) + ε) over unmasked pixels: the test's own flicker,
+//                       its change along the motion as Weber contrast against its *own* low-passed
+//                       luminance (the same σ and ε), needing no reference: what a CI job gates on
+//                       when it has only last night's value of its renderer's output
 //
 // Motion input: RGBA per pixel as the renderer's surface pass writes it
 // (shaders/common/motion.glsl): xy = v_t in pixels (p_t - p_{t-1}), z = the
@@ -74,6 +78,7 @@ struct FlickerFrame {
   double temporal_error = 0.0;       // mean |e_t - e_{t-1}|, all pixels, PQ
   double temporal_error_mc = 0.0;    // along the motion, unmasked pixels, PQ
   double frame_diff_ratio = 1.0;     // mean|ΔT| / mean|ΔR| at fixed pixels, PQ
+  double flicker_contrast = 0.0;     // mean |ΔT| / (Y_a,T + ε): the test's own, no reference
   std::size_t valid_px = 0;          // pixels in the along-the-motion means
   std::size_t disoccluded_px = 0;    // masked: hidden or off-screen in frame t-1
   std::size_t background_px = 0;     // masked: no surface

@@ -5,7 +5,8 @@
 // than its tolerance.
 //
 // "Worse" per metric: larger for errors (deltaE2000, flip, temporal_error,
-// temporal_error_mc, pooled_error, deltaEITP, relative, glint_hist_emd_oct);
+// temporal_error_mc, pooled_error, deltaEITP, relative, glint_hist_emd_oct, and
+// flicker_contrast, the flicker of a test alone that `measure` gives without a reference);
 // farther from 1 for flicker_ratio and frame_diff_ratio, measured as
 // |log(ratio)|; smaller for psnr; any increase of nonfinite_pixels or
 // negative_pixels (tolerance 0). A variant or metric of the baseline that the

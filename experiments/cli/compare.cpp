@@ -43,18 +43,6 @@ std::string num_str(double v) {
   return s.str();
 }
 
-// The colour space an input file is in: --space if given, else the file's oiio:ColorSpace tag when
-// the config knows it, else scene_linear (said on err, so the assumption is never silent).
-std::string input_space(const metrics::ColorManager& cm, const std::string& forced, const std::string& tag,
-                        const std::string& what, const std::string& path, std::ostream& err) {
-  if (!forced.empty()) return cm.canonical_name(forced);
-  if (!tag.empty() && cm.has_space(tag)) return cm.canonical_name(tag);
-  err << "compare: " << what << " '" << path << "' has "
-      << (tag.empty() ? std::string("no colour space tag") : "unknown colour space tag '" + tag + "'")
-      << "; assuming scene_linear (" << cm.canonical_name("scene_linear") << "); use --space to say\n";
-  return cm.canonical_name("scene_linear");
-}
-
 // First channel of a per-pixel map (maps are single-channel by convention).
 Image first_channel(const Image& map) {
   if (map.channels == 1) return map;
@@ -311,7 +299,7 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
       const Image img = metrics::read_image(path, &tag);
       in.scan = metrics::scan_pixels(img, 3);
       in.bad = bad_pixels(img);
-      in.xyz = metrics::metric_xyz(*cm, img, input_space(*cm, o.space, tag, what, path, err), mo);
+      in.xyz = metrics::metric_xyz(*cm, img, metrics::input_space(*cm, o.space, tag, "compare: " + what, path, err), mo);
       if (in.scan.nan + in.scan.infinite == 0) in.converted_bad = nonfinite_pixels(in.xyz);
     };
     load(ref, o.ref, "reference");

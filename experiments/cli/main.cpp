@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   int exit_code = glintlab::kExitOk;
   glintlab::add_run_commands(app, exit_code);
   glintlab::add_compare_command(app, exit_code);
+  glintlab::add_measure_command(app, exit_code);
   glintlab::add_list_command(app, exit_code);
   glintlab::add_check_command(app, exit_code);
   glintlab::add_report_command(app, exit_code);

@@ -632,7 +632,7 @@ class Report:
                 description = ""
         warm = s.get("timing_warmup_frames_excluded")
         facts = [("experiment", esc(title) + (f" <span class=muted>({esc(exp_file)})</span>" if exp_file else "")),
-                 ("device", esc(s.get("device", "?"))),
+                 ("device", esc(s.get("device") or "none (frames read from files)")),
                  ("glintlab version", esc(s.get("glintlab_version", "?"))),
                  ("resolution", res_text + " px"),
                  ("frames", esc(s.get("frames", "?")) + (
@@ -642,19 +642,37 @@ class Report:
                  ("working space", esc(s.get("working_space", "?")))]
         if s.get("per_pixel_metrics_referred"):
             facts.append(("per-pixel metrics", esc(s["per_pixel_metrics_referred"]) + "-referred"))
-        for r in s.get("references") or []:
+        for r in [r for r in s.get("references") or [] if not r.get("frames")]:
             g = stat(r.get("gpu_ms"))
             cost = f", {fmt(g)} GPU ms/frame" if g is not None else ""
             facts.append((f"reference “{esc(r.get('name'))}”",
                           f"{esc(r.get('spp'))} samples per pixel (stratified, box filter){cost}; "
                           f"{esc(r.get('frames_rendered', 0))} frames rendered, "
                           f"{esc(r.get('frames_cached', 0))} from the cache"))
+        if s.get("command") == "measure":  # frames read from files (`glintlab measure`)
+            me = s.get("motion_explained") or {}
+            explained = ""
+            if isinstance(me.get("mean"), (int, float)):
+                explained = (f"; they explain the reference's change to {fmt(me['mean'])} of no motion (negated "
+                             f"{fmt(me.get('negated'))}, y flipped {fmt(me.get('flip_y'))}, x flipped "
+                             f"{fmt(me.get('flip_x'))}; lower is better)")
+            facts.append(("motion vectors", f"<b>{esc(s.get('motion', '?'))}</b>: {esc(s.get('motion_source', ''))}"
+                          + (f", convention {esc(s['motion_convention'])}" if s.get("motion_convention") else "")
+                          + explained))
+            facts.append(("disocclusion", esc(s.get("disocclusion", "?"))))
+            for r in s.get("references") or []:
+                if r.get("frames"):
+                    facts.append((f"reference “{esc(r.get('name'))}”", f"frames read from {esc(r['frames'])}"))
         if stat(s.get("metric_ms_per_frame")) is not None:
             facts.append(("measuring", f"{fmt(stat(s['metric_ms_per_frame']))} ms per variant frame (CPU)"))
         facts.append(("run directory", esc(os.path.abspath(self.run_dir))))
         facts.append(("report written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M")))
         # Defects first: a reader must not miss them.
-        notes = []
+        notes = [f"<p class=warn><b>Warning:</b> {esc(w)}</p>" for w in s.get("warnings") or []]
+        if s.get("motion") == "estimated":
+            notes.append("<p class=note>No motion vectors were given: flicker is measured along optical flow "
+                         "<b>estimated</b> from the frames (OpenCV DIS), which is wrong where the frames change for "
+                         "other reasons than motion (glints); give the renderer's vectors where it has them.</p>")
         for v in variants:
             bad = [(k, self.metric_stat(v, k, "max")) for k in ("nonfinite_pixels", "negative_pixels")]
             bad = [(k, x) for k, x in bad if x]
@@ -677,7 +695,10 @@ class Report:
         nav = "<nav>" + "".join(f"<a href=#{i}>{t}</a>" for i, t in self.sections) + "</nav>"
         return (f"<h1>{esc(title)} <small>glintlab report</small></h1>"
                 + (f"<p class=lede>{esc(description)}</p>" if description else
-                   f"<p class=lede>{len(variants)} anti-aliasing variants against the ground truth.</p>")
+                   (f"<p class=lede>{len(variants)} sequence(s) read from files, measured "
+                    + ("against a reference" if s.get("references") else "without a reference") + ".</p>"
+                    if s.get("command") == "measure" else
+                    f"<p class=lede>{len(variants)} anti-aliasing variants against the ground truth.</p>"))
                 + "<dl class=facts>" + "".join(f"<dt>{k}</dt><dd>{v}</dd>" for k, v in facts) + "</dl>"
                 + "".join(notes)
                 + (f"<h3>At a glance</h3><ul>{''.join(glance)}</ul>" if glance else "")
@@ -693,6 +714,9 @@ class Report:
         if not self.measured:
             return head + "<p class=muted>No error metrics in this run.</p>"
         avail = [m for m in PARETO_METRICS if pareto_points(s, m)]
+        if not avail and s.get("command") == "measure":
+            return head + ("<p class=muted>The variants are frames read from files: they have no render cost "
+                           "here, so there is no error against cost (see the table and the per-frame curves).</p>")
         if not avail:
             return head + "<p class=muted>None of ΔE00, FLIP and flicker ratio was measured in this run.</p>"
         fig, axes = plt.subplots(1, len(avail), figsize=(3.7 * len(avail) + 0.4, 3.6), squeeze=False)
@@ -861,6 +885,8 @@ class Report:
                 text = f"SSAA, {esc(g)}×{esc(g)} stratified jittered samples per pixel, the same pattern every frame"
             elif v.get("aa") == "none":
                 text = "no AA, one sample at each pixel centre"
+            elif v.get("source") == "frames":
+                text = f"frames read from <code>{esc(v.get('frames', '?'))}</code>"
             else:
                 text = esc(v.get("aa", "?"))
             if len(models) > 1:
@@ -1076,12 +1102,17 @@ def crops_section(rep):
         t = crop(load(name, crop_frame), scale)
         tiles.append(t)
         if kind == "reference":
-            cap = f"<b>{esc(name)}</b><br>{esc(obj.get('spp'))} spp, the ground truth"
-            labels.append(f"{name} ({obj.get('spp')} spp)")
+            if obj.get("frames"):
+                cap = f"<b>{esc(name)}</b><br>read from files, the reference"
+                labels.append(f"{name} (files)")
+            else:
+                cap = f"<b>{esc(name)}</b><br>{esc(obj.get('spp'))} spp, the ground truth"
+                labels.append(f"{name} ({obj.get('spp')} spp)")
         else:
             de = csv_value(name, crop_frame, "deltaE2000")
             fl = rep.metric_stat(obj, "flicker_ratio")
-            bits = [f"{esc(obj.get('aa'))}, {esc(obj.get('spp'))} spp"]
+            bits = (["read from files"] if obj.get("source") == "frames"
+                    else [f"{esc(obj.get('aa'))}, {esc(obj.get('spp'))} spp"])
             if de is not None:
                 bits.append(f"ΔE00 {fmt(de)} (whole frame)")
             if fl is not None:

@@ -5,6 +5,8 @@
 #include "metrics/frame_metrics.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <chrono>
 #include <iomanip>
 #include <sstream>
@@ -21,6 +23,7 @@ struct FrameLoop::Impl {
   const RunPlan& plan;
   const SceneData& data;
   const ReferenceCache& cache;
+  const metrics::ColorManager& cm;
   std::ostream& log;
   std::vector<RenderSetup> variants, references;
   RenderSetup motion;
@@ -29,14 +32,17 @@ struct FrameLoop::Impl {
 
   Impl(const core::VkContext& c, const core::SceneGpu& scene, const RunPlan& p, const SceneData& d,
        const metrics::ColorManager& cm, const ReferenceCache& rc, std::ostream& l)
-      : ctx(c), plan(p), data(d), cache(rc), log(l) {
+      : ctx(c), plan(p), data(d), cache(rc), cm(cm), log(l) {
     const ExperimentSpec& spec = *plan.spec;
-    for (const auto& v : plan.variants)
-      variants.push_back(build_variant(ctx, scene, spec.width, spec.height, *v.spec, v.program));
+    for (const auto& v : plan.variants)  // a frame source is read, not rendered: no graph
+      variants.push_back(v.files ? RenderSetup{}
+                                 : build_variant(ctx, scene, spec.width, spec.height, *v.spec, v.program));
+    if (plan.measure || spec.output.motion) motion = build_motion(ctx, scene, spec.width, spec.height);
     if (plan.measure) {
       for (const auto& r : plan.references)
-        references.push_back(build_reference(ctx, scene, spec.width, spec.height, r.program, spec.reference.grid));
-      motion = build_motion(ctx, scene, spec.width, spec.height);
+        references.push_back(r.files ? RenderSetup{}
+                                     : build_reference(ctx, scene, spec.width, spec.height, r.program,
+                                                       spec.reference.grid));
       measure = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
       trackers.resize(plan.variants.size());
     }
@@ -53,7 +59,7 @@ FrameLoop::~FrameLoop() = default;
 std::vector<std::string> FrameLoop::pass_names() const {
   std::vector<std::string> out;
   for (const auto& v : impl_->variants)
-    for (const auto& n : v.graph->pass_names())
+    for (const auto& n : v.graph ? v.graph->pass_names() : std::vector<std::string>{})
       if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
   return out;
 }
@@ -85,6 +91,8 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
     if (work.motion[kk]) {
       in.samples = core::samples_for(spec.path, k, w, h, {glm::vec2(0.0f)});
       motion = std::move(m.motion.graph->execute(in).images.at(m.motion.output));
+      if (own_frame)
+        for (RecordSink* s : sinks) s->motion(k, motion);
     }
     for (size_t r = 0; r < m.references.size(); ++r) {
       if (!work.reference[r][kk]) continue;
@@ -92,9 +100,24 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       rec.reference = int(r);
       rec.name = m.plan.references[r].name;
       rec.frame = k;
+      std::optional<Image> img;
+      if (const auto& files = m.plan.references[r].files) {  // read, not rendered
+        ColourFrame cf = read_colour_frame(*files, kk, m.cm, spec.working_space);
+        if (!cf.scan.clean() && own_frame)
+          m.log << "\nwarning: reference frame " << k << " ('" << files->paths[kk] << "'): " << cf.scan.nan << " NaN, "
+                << cf.scan.infinite << " Inf, " << cf.scan.negative << " negative pixels\n";
+        rec.wall_ms = cf.read_ms;
+        rec.gpu_ms = std::nan("");
+        img = std::move(cf.image);
+        rec.image = &*img;
+        if (own_frame)
+          for (RecordSink* s : sinks) s->reference(rec);
+        prepared[r] = m.measure->prepare(*img);
+        continue;
+      }
       const std::string key = m.plan.reference_key(int(r), in.uniforms);
       bool corrupt = false;
-      std::optional<Image> img = m.cache.load(key, &corrupt);
+      img = m.cache.load(key, &corrupt);
       if (corrupt) {
         m.log << "warning: corrupt reference cache entry " << m.cache.path_of(key) << " removed; re-rendering\n";
         rec.rebuilt = true;
@@ -125,7 +148,14 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       in.samples = core::samples_for(spec.path, k, w, h, offsets);
       in.jitter_px = offsets.size() == 1 ? offsets[0] : glm::vec2(0.0f);
       auto t0 = Clock::now();
-      core::FrameResult fr = m.variants[i].graph->execute(in);
+      core::FrameResult fr;
+      std::optional<ColourFrame> read;
+      if (pv.files) {  // a frame source: its k-th frame, in the working space
+        read = read_colour_frame(*pv.files, kk, m.cm, spec.working_space);
+        fr.gpu_ms = std::nan("");
+      } else {
+        fr = m.variants[i].graph->execute(in);
+      }
       FrameRecord rec;
       rec.wall_ms = ms_since(t0);
       rec.variant = int(i);
@@ -133,12 +163,12 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       rec.frame = k;
       rec.time_s = cam.time;
       rec.sequence_start = k == 0 || cam.cut;
-      rec.spp = pv.spec->samples_per_pixel();
+      rec.spp = pv.files ? 0 : pv.spec->samples_per_pixel();
       rec.gpu_ms = fr.gpu_ms;
       rec.passes = fr.timings;
-      const Image& img = fr.images.at(m.variants[i].output);
+      const Image& img = read ? read->image : fr.images.at(m.variants[i].output);
       rec.image = &img;
-      rec.scan = metrics::scan_pixels(img, 3);
+      rec.scan = read ? read->scan : metrics::scan_pixels(img, 3);
       if (work.measure[i][kk]) {
         // The tracker compares with the previous frame: it restarts at a cut
         // and where the previous frame was not measured.

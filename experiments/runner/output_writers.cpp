@@ -3,9 +3,11 @@
 #include "core/render/taa_settings.h"
 #include "core/util/atomic_file.h"
 #include "experiments/runner/contact_sheet.h"
+#include "experiments/report/report.h"
 #include "experiments/runner/version.h"
 #include "metrics/color/image_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -37,6 +39,17 @@ nlohmann::json taa_json(const core::TaaSettings& t) {
           {"anti_flicker", t.anti_flicker},
           {"disocclusion_tolerance", t.disocclusion_tolerance}};
 }
+
+// Collects what the journal holds for the schema: metric names (in order) and pass names (first seen).
+struct RecordNames final : RecordSink {
+  std::vector<std::string> metrics, passes;
+  void frame(const FrameRecord& r) override {
+    if (metrics.empty())
+      for (const auto& [n, v] : r.metrics) metrics.push_back(n);
+    for (const auto& t : r.passes)
+      if (std::find(passes.begin(), passes.end(), t.pass) == passes.end()) passes.push_back(t.pass);
+  }
+};
 
 }  // namespace
 
@@ -120,6 +133,7 @@ void SummaryWriter::finish() {
                                         ? std::string("scene")
                                         : "display (" + spec.metric_options.display_view + ")";
   j["timing_warmup_frames_excluded"] = info_.warmup_frames;
+  for (auto it = info_.extra.begin(); it != info_.extra.end(); ++it) j[it.key()] = it.value();
   j["statistics"] = "per variant over frames: mean, p95 (nearest rank) and max; a NaN frame makes all three null "
                     "(and n counts it); +-inf is written as null";
   nlohmann::json units = nlohmann::json::object();
@@ -131,7 +145,10 @@ void SummaryWriter::finish() {
   for (size_t i = 0; i < plan_.references.size(); ++i) {
     const ReferenceStats& s = references_[i];
     refs.push_back({{"name", plan_.references[i].name},
-                    {"spp", spec.reference.grid * spec.reference.grid},
+                    {"spp", spec.reference.frames.empty() ? nlohmann::json(spec.reference.grid * spec.reference.grid)
+                                                          : nlohmann::json(nullptr)},
+                    {"frames", spec.reference.frames.empty() ? nlohmann::json(nullptr)
+                                                             : nlohmann::json(spec.reference.frames)},
                     {"variants", [&] {
                        nlohmann::json v = nlohmann::json::array();
                        for (int k : plan_.references[i].variants) v.push_back(plan_.variants[size_t(k)].spec->name);
@@ -158,15 +175,20 @@ void SummaryWriter::finish() {
     const VariantStats& s = variants_[i];
     nlohmann::json e;
     e["name"] = v.name;
-    e["aa"] = enum_name(kAaNames, v.aa);
-    e["glint_model"] = enum_name(core::kGlintModelNames, pv.params.glint_model);
-    e["spp"] = v.samples_per_pixel();
-    if (v.aa == AaMethod::Ssaa) e["ssaa_grid"] = v.ssaa_grid;
-    if (v.aa == AaMethod::Taa) e["taa"] = taa_json(v.taa);
-    e["debug"] = v.debug;
-    e["material"] = v.material_json;  // preset and every override (glints, energy_consistent, ...)
+    if (!v.frames.empty()) {  // a frame source: what its files are is the files' business
+      e["source"] = "frames";
+      e["frames"] = v.frames;
+    } else {
+      e["aa"] = enum_name(kAaNames, v.aa);
+      e["glint_model"] = enum_name(core::kGlintModelNames, pv.params.glint_model);
+      e["spp"] = v.samples_per_pixel();
+      if (v.aa == AaMethod::Ssaa) e["ssaa_grid"] = v.ssaa_grid;
+      if (v.aa == AaMethod::Taa) e["taa"] = taa_json(v.taa);
+      e["debug"] = v.debug;
+      e["material"] = v.material_json;  // preset and every override (glints, energy_consistent, ...)
+      e["defines"] = pv.program.defines;
+    }
     e["reference"] = pv.reference >= 0 ? nlohmann::json(plan_.references[size_t(pv.reference)].name) : nullptr;
-    e["defines"] = pv.program.defines;
     e["gpu_ms"] = stats_json(s.gpu_ms);
     nlohmann::json pp = nlohmann::json::object();
     for (const auto& [pass, st] : s.per_pass) pp[pass] = stats_json(st);
@@ -183,9 +205,35 @@ void SummaryWriter::finish() {
   write_text_atomic(path_, j.dump(2) + "\n");
 }
 
+// frames.csv, summary.json, the contact sheet and the report, all from the journals.
+// report_status: the report's exit code (0 when not asked for).
+nlohmann::json write_run_outputs(const fs::path& dir, const RunPlan& plan, const std::vector<const Journal*>& journals,
+                                 const RunInfo& info, ImageWriter& images, bool report, int* report_status,
+                                 std::ostream& log) {
+  *report_status = 0;
+  RecordNames names;
+  for (const Journal* j : journals) j->replay(names);
+  const FrameSchema schema(names.metrics, names.passes);
+  CsvWriter csv(dir / "frames.csv", schema);
+  SummaryWriter summary(dir / "summary.json", plan, schema, info);
+  for (const Journal* j : journals) {
+    j->replay(csv);
+    j->replay(summary);
+  }
+  csv.finish();
+  summary.finish();
+  images.finish();
+  log << "wrote " << (dir / "frames.csv").string() << ", " << (dir / "summary.json").string()
+      << (plan.spec->output.contact_sheet ? " and " + (dir / "contact_sheet.png").string() : std::string()) << "\n";
+  if (report) *report_status = write_report(dir.string(), log);
+  return summary.summary();
+}
+
 // ---------------------------------------------------------------- ImageWriter
 ImageWriter::ImageWriter(fs::path dir, const RunPlan& plan, const metrics::ColorManager& cm)
-    : dir_(std::move(dir)), plan_(plan), cm_(cm), chroma_(cm.chromaticities(plan.spec->working_space)) {}
+    : dir_(std::move(dir)), plan_(plan), cm_(cm) {
+  if (plan.spec->output.exr) chroma_ = cm.chromaticities(plan.spec->working_space);
+}
 
 void ImageWriter::save(const std::string& row, int frame, const Image& img, bool exr, bool png) {
   const OutputSpec& out = plan_.spec->output;
@@ -219,6 +267,13 @@ void ImageWriter::reference(const ReferenceRecord& r) {
 
 void ImageWriter::frame(const FrameRecord& r) {
   save(r.name, r.frame, *r.image, plan_.spec->output.exr, plan_.spec->output.png);
+}
+
+void ImageWriter::motion(int frame, const Image& m) {
+  const OutputSpec& out = plan_.spec->output;
+  if (!out.motion || frame % out.every != 0) return;
+  fs::create_directories(dir_ / "motion");
+  metrics::write_exr_data(frame_path(dir_ / "motion", frame, "exr").string(), m);
 }
 
 void ImageWriter::finish() {

@@ -7,10 +7,14 @@
 //                  (metrics/stats.h rules), per reference its cost
 //   ImageWriter    <variant>/frame_NNNN.exr (scene-linear, chromaticities) and
 //                  .png (through the OCIO display/view), the same for each
-//                  reference, and contact_sheet.png
+//                  reference, contact_sheet.png, and with output.motion
+//                  motion/frame_NNNN.exr (float: R, G = v in pixels, B = the surface's
+//                  distance now, A = its distance in the previous frame: the `pixels`
+//                  convention of `glintlab measure`)
 #pragma once
 
 #include "experiments/runner/contact_sheet.h"
+#include "experiments/runner/journal.h"
 #include "experiments/runner/plan.h"
 #include "experiments/runner/records.h"
 #include "experiments/runner/schema.h"
@@ -21,6 +25,7 @@
 
 #include <filesystem>
 #include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -43,6 +48,7 @@ struct RunInfo {
   std::string device;
   std::string ocio_config;
   int warmup_frames = 1;  // frames left out of the timing aggregates
+  nlohmann::json extra = nlohmann::json::object();  // further top-level keys (measure: motion, sources)
 };
 
 class SummaryWriter final : public RecordSink {
@@ -80,6 +86,7 @@ class ImageWriter final : public RecordSink {
   ImageWriter(std::filesystem::path dir, const RunPlan& plan, const metrics::ColorManager& cm);
   void reference(const ReferenceRecord& r) override;
   void frame(const FrameRecord& r) override;
+  void motion(int frame, const Image& motion) override;
   void finish() override;
 
  private:
@@ -87,8 +94,15 @@ class ImageWriter final : public RecordSink {
   std::filesystem::path dir_;
   const RunPlan& plan_;
   const metrics::ColorManager& cm_;
-  std::array<float, 8> chroma_;
+  std::array<float, 8> chroma_{};  // of the working space, when EXRs are written
 };
+
+// frames.csv, summary.json, the contact sheet and the report of a run (`run`, `merge`, `measure`),
+// all from its journals: every output is a replay of the records. report_status receives the
+// report's exit code (0 when not asked for). Returns the summary document.
+nlohmann::json write_run_outputs(const std::filesystem::path& dir, const RunPlan& plan,
+                                 const std::vector<const Journal*>& journals, const RunInfo& info,
+                                 ImageWriter& images, bool report, int* report_status, std::ostream& log);
 
 // {"mean", "p95", "max", "n"}; non-finite values are null (JSON has no
 // infinity or NaN).

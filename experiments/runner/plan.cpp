@@ -9,7 +9,13 @@
 namespace glintlab {
 
 RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const metrics::ColorManager& cm,
-                  const SceneData& scene, const std::string& device_name) {
+                  const SceneData& scene, const std::string& device_name, std::ostream* log) {
+  std::ostringstream quiet;
+  std::ostream& note = log ? *log : quiet;
+  auto open_files = [&](const std::string& seq, const std::string& space, const std::string& what) {
+    int w = spec.width, h = spec.height;
+    return open_colour_sequence(seq, first_frame_numbers(seq, frames, what), space, cm, what, &w, &h, note);
+  };
   RunPlan plan;
   plan.spec = &spec;
   plan.frames = frames;
@@ -21,14 +27,25 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
     pv.params = to_working_space(v.material, spec.working_space, cm);
     core::SandFeatures needs = scene.range;
     needs.debug_output = v.debug;
-    pv.program = core::sand_program(pv.params, needs, core::ProgramRole::Variant);
-    if (measure) {
+    if (v.frames.empty())
+      pv.program = core::sand_program(pv.params, needs, core::ProgramRole::Variant);
+    else
+      pv.files = open_files(v.frames, v.frames_space, spec.file + ": variant " + v.name + ": frames");
+    if (measure && !spec.reference.frames.empty()) {  // one reference read from files for every variant
+      if (plan.references.empty()) {
+        plan.references.push_back({"reference", {}, "frames:" + spec.reference.frames, {}, std::nullopt});
+        plan.references[0].files =
+            open_files(spec.reference.frames, spec.reference.frames_space, spec.file + ": reference: frames");
+      }
+      pv.reference = 0;
+      plan.references[0].variants.push_back(int(plan.variants.size()));
+    } else if (measure) {
       core::MaterialProgram ref = core::sand_program(pv.params, needs, core::ProgramRole::Reference);
       const std::string key = ref.cache_key();
       auto it = std::find(ref_keys.begin(), ref_keys.end(), key);
       if (it == ref_keys.end()) {
         ref_keys.push_back(key);
-        plan.references.push_back({"", ref, key, {}});
+        plan.references.push_back({"", ref, key, {}, std::nullopt});
         it = ref_keys.end() - 1;
       }
       pv.reference = int(it - ref_keys.begin());

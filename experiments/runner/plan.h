@@ -6,10 +6,14 @@
 
 #include "core/material/program.h"
 #include "core/render/frame_uniforms.h"
+#include "experiments/measure/sequence.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
 
+#include <optional>
+#include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,12 +25,14 @@ struct RunPlan {
     core::SandParams params;        // in the working space
     core::MaterialProgram program;  // what its surface pass shades
     int reference = -1;             // index into references; -1 when not measured
+    std::optional<FrameFiles> files;  // a frame source ("frames": SEQ): read, not rendered
   };
   struct Reference {
     std::string name;  // "reference", or "reference-<first variant>" when a run has several
     core::MaterialProgram program;
     std::string program_key;  // program.cache_key()
     std::vector<int> variants;
+    std::optional<FrameFiles> files;  // "reference": {"frames": SEQ}: read, not rendered
   };
 
   const ExperimentSpec* spec = nullptr;
@@ -41,7 +47,9 @@ struct RunPlan {
   std::string reference_key(int r, const core::FrameUniforms& fu) const;
 };
 
+// Frame sources are opened here (every header checked against the run's size): ConfigError.
+// `log` receives the note of a frame source without a colour-space tag.
 RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const metrics::ColorManager& cm,
-                  const SceneData& scene, const std::string& device_name);
+                  const SceneData& scene, const std::string& device_name, std::ostream* log = nullptr);
 
 }  // namespace glintlab

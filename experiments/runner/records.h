@@ -54,6 +54,9 @@ class RecordSink {
   virtual ~RecordSink() = default;
   virtual void reference(const ReferenceRecord&) {}
   virtual void frame(const FrameRecord& r) = 0;
+  // The motion target of a frame (4 channels: v in pixels, distance now, distance in the previous
+  // frame), for sinks that save it (`"output": {"motion": true}`).
+  virtual void motion(int /*frame*/, const Image& /*motion*/) {}
   // After the last frame: write what is written once.
   virtual void finish() {}
 };

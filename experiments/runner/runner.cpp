@@ -5,6 +5,7 @@
 #include "core/util/json_check.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/measure/measure.h"
 #include "experiments/report/report.h"
 #include "experiments/runner/frame_loop.h"
 #include "experiments/runner/journal.h"
@@ -53,6 +54,20 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
         << " ms/frame GPU at " << r["spp"] << " spp), " << r["frames_cached"] << " cached\n";
 }
 
+// The content of every file a frame source of the spec reads (the first spec.frames frames).
+nlohmann::json frame_source_hashes(const ExperimentSpec& spec) {
+  nlohmann::json out = nlohmann::json::object();
+  auto add = [&](const std::string& seq, const std::string& what) {
+    if (seq.empty()) return;
+    const std::vector<int> numbers = first_frame_numbers(seq, spec.frames, what);
+    for (const auto& f : list_frames(parse_sequence(seq, what), what))
+      if (std::find(numbers.begin(), numbers.end(), f.number) != numbers.end()) out[f.path] = file_content_hash(f.path);
+  };
+  for (const auto& v : spec.variants) add(v.frames, spec.file + ": variant " + v.name + ": frames");
+  add(spec.reference.frames, spec.file + ": reference: frames");
+  return out;
+}
+
 // The spec as this run uses it: the file, then the command line's overrides.
 ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& file, const nlohmann::json& overrides) {
   ExperimentSpec spec = ExperimentSpec::from_json(source, file);
@@ -78,45 +93,10 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
   return spec;
 }
 
-// Collects what the journal holds for the schema: metric names (in order) and pass names (first seen).
-struct RecordNames final : RecordSink {
-  std::vector<std::string> metrics, passes;
-  void frame(const FrameRecord& r) override {
-    if (metrics.empty())
-      for (const auto& [n, v] : r.metrics) metrics.push_back(n);
-    for (const auto& t : r.passes)
-      if (std::find(passes.begin(), passes.end(), t.pass) == passes.end()) passes.push_back(t.pass);
-  }
-};
-
 struct DefectCount final : RecordSink {
   size_t frames = 0;
   void frame(const FrameRecord& r) override { frames += !r.scan.clean(); }
 };
-
-// frames.csv, summary.json, the contact sheet and the report, all from the journals.
-// report_status: the report's exit code (0 when not asked for).
-nlohmann::json write_outputs(const fs::path& dir, const RunPlan& plan, const std::vector<const Journal*>& journals,
-                             const RunInfo& info, ImageWriter& images, bool report, int* report_status,
-                             std::ostream& log) {
-  *report_status = kExitOk;
-  RecordNames names;
-  for (const Journal* j : journals) j->replay(names);
-  const FrameSchema schema(names.metrics, names.passes);
-  CsvWriter csv(dir / "frames.csv", schema);
-  SummaryWriter summary(dir / "summary.json", plan, schema, info);
-  for (const Journal* j : journals) {
-    j->replay(csv);
-    j->replay(summary);
-  }
-  csv.finish();
-  summary.finish();
-  images.finish();
-  log << "wrote " << (dir / "frames.csv").string() << ", " << (dir / "summary.json").string()
-      << (plan.spec->output.contact_sheet ? " and " + (dir / "contact_sheet.png").string() : std::string()) << "\n";
-  if (report) *report_status = write_report(dir.string(), log);
-  return summary.summary();
-}
 
 }  // namespace
 
@@ -143,6 +123,46 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     log << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
+  if (spec.frames_only.enabled) {  // every source is files: the measurement of `glintlab measure`
+    MeasureOptions m;
+    m.file = file;
+    m.name = spec.name;
+    m.reference = spec.reference.frames;
+    m.reference_space = spec.reference.frames_space;
+    for (const auto& v : spec.variants) m.tests.push_back({v.name, v.frames, v.frames_space});
+    m.out_dir = opt.out_dir;
+    m.motion = spec.frames_only.motion;
+    m.motion_from = spec.frames_only.motion_from;
+    m.motion_convention = spec.frames_only.motion_convention;
+    m.depth = spec.frames_only.depth;
+    m.metrics = spec.metrics;
+    m.first = spec.frames_only.first;
+    m.last = spec.frames_only.last;
+    if (opt.max_frames > 0) {
+      if (m.first == INT_MIN) {
+        log << "error: --frames N: a frames-only experiment takes its frames by number; set \"frame_range\" in "
+            << file << "\n";
+        return kExitBadInput;
+      }
+      m.last = std::min(m.last, m.first + opt.max_frames - 1);
+    }
+    m.fps = spec.frames_only.fps;
+    m.ocio_config = opt.ocio_config;
+    m.resume = opt.resume;
+    m.report = opt.report;
+    m.display = spec.output.display;
+    m.view = spec.output.view;
+    m.exposure = spec.output.exposure;
+    if (!opt.measure) {
+      log << "error: " << file << ": an experiment without \"scene\" has nothing to render; use `run`\n";
+      return kExitBadInput;
+    }
+    if (opt.shard_count > 1 || opt.width > 0) {
+      log << "error: " << file << ": --shard and --resolution do not apply to frames read from files\n";
+      return kExitBadInput;
+    }
+    return measure_sequences(m, log);
+  }
   const bool measure = opt.measure && spec.reference.enabled;
   if (opt.measure && !spec.reference.enabled)
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";
@@ -158,7 +178,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   fs::create_directories(out_dir);
 
   // ---- the journal: what this folder already holds, and what it is a run of
-  const nlohmann::json header = {{"type", "run"},
+  nlohmann::json header = {{"type", "run"},
                                  {"glintlab_version", version()},
                                  {"command", measure ? "run" : "render"},
                                  {"file", file},
@@ -166,6 +186,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
                                  {"content_hash", core::hash_hex(source.dump())},
                                  {"overrides", overrides},
                                  {"shard", {opt.shard_index, opt.shard_count}}};
+  if (const nlohmann::json inputs = frame_source_hashes(spec); !inputs.empty()) header["inputs"] = inputs;
   std::unique_ptr<Journal> journal;
   try {
     journal = std::make_unique<Journal>(out_dir, header, opt.resume);
@@ -188,7 +209,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     log << "; the full grid has " << 2 * size_t(spec.mesh.tessellation) * spec.mesh.tessellation << ")";
   }
   log << "\n";
-  const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name);
+  const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name, &log);
   const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);
   const WorkSchedule work = schedule_work(plan, *journal, begin, end);
   if (opt.shard_count > 1)
@@ -210,7 +231,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   // ---- outputs, from the journal
   int report_status = kExitOk;
   const nlohmann::json summary =
-      write_outputs(out_dir, plan, {journal.get()}, RunInfo{ctx.info().name, cm.config_path(), 1}, images,
+      write_run_outputs(out_dir, plan, {journal.get()}, RunInfo{ctx.info().name, cm.config_path(), 1}, images,
                     opt.report, &report_status, log);
   print_table(log, summary);
   int status = report_status;  // a failed report is a failed run, unless the run's own defects say more
@@ -310,7 +331,7 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
   }
   int report_status = kExitOk;
   const nlohmann::json summary =
-      write_outputs(out_dir, plan, js, RunInfo{device, cm.config_path(), 1}, images, report, &report_status, log);
+      write_run_outputs(out_dir, plan, js, RunInfo{device, cm.config_path(), 1}, images, report, &report_status, log);
   print_table(log, summary);
   return report_status;
 }

@@ -32,6 +32,9 @@ WorkSchedule schedule_work(const RunPlan& plan, const Journal& journal, int fram
       }
     for (int k = 0; k <= last; ++k) w.render[v][size_t(k)] = 1;
     w.last_frame = std::max(w.last_frame, last);
+    if (plan.spec && plan.spec->output.motion)  // written for every frame the run records
+      for (int k = frame_begin; k < frame_end; ++k)
+        if (w.emit[v][size_t(k)]) w.motion[size_t(k)] = 1;
     if (!plan.measure) continue;
     for (int k = 0; k <= last; ++k) {
       const bool m = w.emit[v][size_t(k)] || (k + 1 < int(F) && w.emit[v][size_t(k) + 1]);

@@ -62,6 +62,29 @@ core::TaaSettings parse_taa(JsonReader& r) {
   return t;
 }
 
+// A path given in an experiment file is relative to the file's folder.
+std::string relative_to(const std::string& file, const std::string& path) {
+  if (path.empty() || fs::path(path).is_absolute() || file.empty()) return path;
+  return (fs::path(file).parent_path() / path).string();
+}
+
+std::string variant_name(JsonReader& vr, std::set<std::string>& names) {
+  const std::string name = vr.get_string("name");
+  if (name.empty() || name.find_first_of("/\\ ,\"") != std::string::npos)
+    vr.fail("name", "must be non-empty without '/', '\\\\', spaces, commas or quotes (it names files and CSV rows)");
+  if (!names.insert(name).second) vr.fail("name", "\"" + name + "\" is used by two variants");
+  return name;
+}
+
+// {"frames": SEQ, "space": NAME}: a variant or reference read from files (nothing else is allowed:
+// a renderer's options do not apply to another renderer's frames).
+void read_frame_source(JsonReader& r, const std::string& file, std::string* seq, std::string* space) {
+  *seq = relative_to(file, r.get_string("frames"));
+  if (seq->empty()) r.fail("frames", "expected a sequence: a folder, a pattern with %04d or ####, optionally :LAYER");
+  *space = r.get_string("space", "");
+  r.finish();
+}
+
 core::SandParams parse_material(const nlohmann::json& j, const std::string& file, const std::string& path) {
   JsonReader r(j, file, path);
   return core::SandParams::from_json(r);
@@ -78,6 +101,7 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
   JsonReader r(j, file);
   s.name = r.get_string("name", fs::path(file).stem().string());
   s.description = r.get_string("description", "");
+  if (!r.has("scene")) return read_frames_only(r, s, file);  // the frames' own size and colour spaces
   auto res = r.get_numbers("resolution", std::vector<double>{640, 360}, 1, 16384);
   if (res[0] != double(int(res[0])) || res[1] != double(int(res[1]))) r.fail("resolution", "expected two integers");
   s.width = int(res[0]);
@@ -102,10 +126,14 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
   for (size_t i = 0; i < variants.size(); ++i) {
     JsonReader& vr = variants[i];
     VariantSpec v;
-    v.name = vr.get_string("name");
-    if (v.name.empty() || v.name.find_first_of("/\\ ,\"") != std::string::npos)
-      vr.fail("name", "must be non-empty without '/', '\\\\', spaces, commas or quotes (it names files and CSV rows)");
-    if (!names.insert(v.name).second) vr.fail("name", "\"" + v.name + "\" is used by two variants");
+    v.name = variant_name(vr, names);
+    if (vr.has("frames")) {  // a frame source: what the files are is theirs, not a renderer's option
+      read_frame_source(vr, file, &v.frames, &v.frames_space);
+      v.material = parse_material(s.material_json, file, r.key_path("material"));
+      v.material_json = s.material_json;
+      s.variants.push_back(std::move(v));
+      continue;
+    }
     v.aa = get_named(vr, "aa", kAaNames, AaMethod::None);
     v.ssaa_grid = vr.get_int("ssaa_grid", v.aa == AaMethod::Ssaa ? 2 : 1, 1, 16);
     if (v.aa != AaMethod::Ssaa && vr.has("ssaa_grid") && v.ssaa_grid != 1)
@@ -131,10 +159,20 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
 
   if (auto ref = r.optional_child("reference")) {
     s.reference.enabled = ref->get_bool("enabled", true);
-    s.reference.grid = ref->get_int("grid", 16, 1, 64);
-    ref->finish();
+    if (ref->has("frames")) {
+      if (ref->has("grid")) ref->fail("grid", "a reference read from \"frames\" has no sample grid");
+      read_frame_source(*ref, file, &s.reference.frames, &s.reference.frames_space);
+    } else {
+      s.reference.grid = ref->get_int("grid", 16, 1, 64);
+      ref->finish();
+    }
   }
+  read_common(r, s);
+  r.finish();
+  return s;
+}
 
+void ExperimentSpec::read_common(JsonReader& r, ExperimentSpec& s) {
   auto allowed_metrics = metrics::metric_names();
   if (r.has("metrics")) {
     const auto& m = r.raw("metrics");
@@ -176,8 +214,50 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     s.output.exposure = out->get_number("exposure", 0.0, -20.0, 20.0);
     s.output.contact_sheet = out->get_bool("contact_sheet", false);
     s.output.contact_sheet_columns = out->get_int("contact_sheet_columns", 8, 1, 64);
+    s.output.motion = out->get_bool("motion", false);
     out->finish();
   }
+}
+
+ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s, const std::string& file) {
+  s.frames_only.enabled = true;
+  std::set<std::string> names;
+  auto variants = r.array("variants", 1, 64);
+  for (auto& vr : variants) {
+    VariantSpec v;
+    v.name = variant_name(vr, names);
+    if (!vr.has("frames"))
+      vr.fail("frames", "an experiment without \"scene\" measures frame sources only: every variant needs "
+                        "\"frames\": SEQ");
+    read_frame_source(vr, file, &v.frames, &v.frames_space);
+    s.variants.push_back(std::move(v));
+  }
+  s.reference.enabled = false;
+  s.reference.grid = 0;
+  if (auto ref = r.optional_child("reference")) {
+    if (!ref->has("frames")) ref->fail("frames", "an experiment without \"scene\" reads its reference from \"frames\": SEQ");
+    s.reference.enabled = true;
+    read_frame_source(*ref, file, &s.reference.frames, &s.reference.frames_space);
+  }
+  if (auto m = r.optional_child("motion")) {
+    if (m->has("frames") && m->has("from")) m->fail("from", "give \"frames\" or \"from\", not both");
+    if (m->has("frames")) s.frames_only.motion = relative_to(file, m->get_string("frames"));
+    if (m->has("from")) s.frames_only.motion_from = m->get_enum("from", "reference", {"reference", "test"});
+    s.frames_only.motion_convention =
+        m->get_enum("convention", "pixels", {"pixels", "blender", "unreal", "unity"});
+    if (m->has("depth")) s.frames_only.depth = relative_to(file, m->get_string("depth"));
+    m->finish();
+  }
+  if (r.has("frame_range")) {
+    auto fr = r.get_numbers("frame_range", std::vector<double>{0, 0}, -1e9, 1e9);
+    if (fr.size() != 2 || fr[0] != double(int(fr[0])) || fr[1] != double(int(fr[1])) || fr[0] > fr[1])
+      r.fail("frame_range", "expected [first, last], two integer frame numbers with first <= last");
+    s.frames_only.first = int(fr[0]);
+    s.frames_only.last = int(fr[1]);
+  }
+  s.frames_only.fps = r.get_number("fps", 24.0, 1e-3, 1000.0);
+  s.frames = 0;  // what the sequences hold
+  read_common(r, s);
   r.finish();
   return s;
 }

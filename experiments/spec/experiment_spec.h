@@ -29,12 +29,14 @@
 #include "core/scene/environment.h"
 #include "core/scene/mesh.h"
 #include "core/render/taa_settings.h"
+#include "core/util/json_check.h"
 #include "core/util/named_enum.h"
 #include "core/material/sand_material.h"
 #include "metrics/metric_registry.h"
 
 #include <nlohmann/json.hpp>
 
+#include <climits>
 #include <string>
 #include <vector>
 
@@ -57,13 +59,29 @@ struct VariantSpec {
   core::SandParams material;  // experiment material + this variant's overrides
   nlohmann::json material_json;  // the merged object (for hashing and the summary)
   nlohmann::json taa_json;       // the "taa" object as given (for the summary)
+  std::string frames;            // a frame source: the SEQ its frames are read from (experiments/measure/)
+  std::string frames_space;      // its OCIO space ("" = the files' tag, else scene_linear)
 
   int samples_per_pixel() const { return aa == AaMethod::Ssaa ? ssaa_grid * ssaa_grid : 1; }
 };
 
 struct ReferenceSpec {
   bool enabled = true;
-  int grid = 16;  // grid x grid samples (DESIGN.md: 16 x 16 default)
+  int grid = 16;  // grid x grid samples (16 x 16 by default)
+  std::string frames;  // a frame source instead of a render: the SEQ (experiments/measure/)
+  std::string frames_space;
+};
+
+// A frames-only experiment (no "scene"): every variant and the reference are frame sources, measured
+// as `glintlab measure` measures them; these are its further keys.
+struct FramesOnlySpec {
+  bool enabled = false;
+  std::string motion;             // "motion": {"frames": SEQ}
+  std::string motion_from;        //            {"from": "reference" | "test"}
+  std::string motion_convention = "pixels";  // {"convention": NAME}
+  std::string depth;              //            {"depth": SEQ}
+  int first = INT_MIN, last = INT_MAX;  // "frame_range": [first, last]
+  double fps = 24.0;              // "fps"
 };
 
 struct OutputSpec {
@@ -75,6 +93,7 @@ struct OutputSpec {
   double exposure = 0.0;                   // stops applied to the scene-linear image before the view (previews only)
   bool contact_sheet = false;  // DIR/contact_sheet.png: rows = variants (+ reference), columns = saved frames
   int contact_sheet_columns = 8;  // at most this many saved frames per row
+  bool motion = false;  // DIR/motion/frame_NNNN.exr: the motion vectors flicker is measured along (`pixels`)
 };
 
 struct ExperimentSpec {
@@ -95,9 +114,14 @@ struct ExperimentSpec {
   metrics::MetricOptions metric_options;
   OutputSpec output;
   nlohmann::json source;  // the file's JSON as read (for hashing and the summary)
+  FramesOnlySpec frames_only;
 
   static ExperimentSpec load(const std::string& file);
   static ExperimentSpec from_json(const nlohmann::json& j, const std::string& file);
+
+ private:
+  static void read_common(JsonReader& r, ExperimentSpec& s);  // metrics, metric_options, output
+  static ExperimentSpec read_frames_only(JsonReader& r, ExperimentSpec& s, const std::string& file);
 };
 
 // Built-in experiments: every *.json under GLINTLAB_EXPERIMENT_DIR (not paths/), named by its

@@ -17,4 +17,14 @@ Image metric_xyz(const ColorManager& cm, const Image& img, const std::string& fr
   return cm.display_referred_xyz(img, from, display, view);
 }
 
+std::string input_space(const ColorManager& cm, const std::string& forced, const std::string& tag,
+                        const std::string& what, const std::string& path, std::ostream& err) {
+  if (!forced.empty()) return cm.canonical_name(forced);
+  if (!tag.empty() && cm.has_space(tag)) return cm.canonical_name(tag);
+  err << what << " '" << path << "' has "
+      << (tag.empty() ? std::string("no colour space tag") : "unknown colour space tag '" + tag + "'")
+      << "; assuming scene_linear (" << cm.canonical_name("scene_linear") << "); use --space to say\n";
+  return cm.canonical_name("scene_linear");
+}
+
 }  // namespace glintlab::metrics

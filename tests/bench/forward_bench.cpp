@@ -20,9 +20,15 @@
 //   3. The TAA resolve against the surface pass of the same frame.
 //   4. Every per-frame metric of one 640x360 variant frame against a 2x2-sample
 //      render of the same frame (its reference): ms per metric.
+//   5. `glintlab measure` end to end on files: a 1920x1080 test sequence against
+//      its reference (float EXR, ZIP, with a motion sequence in the `pixels`
+//      convention), flicker + ΔE00, EXR decoding included (the next frame is
+//      decoded while one is measured): frames/s of the whole, and ms and frames/s
+//      per metric group and for reading a frame.
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
-// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H] [--only surface|terrain|reference|taa|metrics]
+// Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H]
+//                       [--only surface|terrain|reference|taa|metrics|measure]
 //                       [--smoke]
 // --smoke runs every section once at tiny sizes (its figures mean nothing): the test
 // bench.smoke runs it with the validation layers on (GLINTLAB_VALIDATION=1), so
@@ -36,7 +42,9 @@
 #include "core/scene/camera_path.h"
 #include "core/scene/mesh.h"
 #include "core/vk/vk_context.h"
+#include "experiments/measure/measure.h"
 #include "experiments/runner/variant_factory.h"
+#include "metrics/color/image_io.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
@@ -52,6 +60,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -107,6 +119,71 @@ core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int 
   return in;
 }
 
+// A sequence a renderer might write: a smooth texture moving 1.5 px right and 0.5 px down a frame,
+// with sparse bright sparkles that the test redraws at random every frame (the flicker to find).
+void measure_section(const metrics::ColorManager& cm, int w, int h, int frames, bool half) {
+  namespace fs = std::filesystem;
+  char tmpl[] = "/tmp/glintlab_bench_measure_XXXXXX";
+  const fs::path dir = ::mkdtemp(tmpl);
+  for (const char* sub : {"ref", "test", "motion"}) fs::create_directories(dir / sub);
+  const double vx = 1.5, vy = 0.5;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < frames; ++k) {
+    Image ref(w, h, 4, 1.0f), test(w, h, 4, 1.0f), motion(w, h, 4, 1.0f);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double sx = x - vx * k, sy = y - vy * k;  // the surface point under pixel (x, y)
+        const double t = 0.4 + 0.25 * std::sin(0.05 * sx) * std::cos(0.07 * sy) + 0.1 * std::sin(0.31 * sx + 0.17 * sy);
+        for (int c = 0; c < 3; ++c) ref.at(x, y, c) = test.at(x, y, c) = float(t * (1.0 - 0.1 * c));
+        float* m = motion.px(x, y);
+        m[0] = float(vx), m[1] = float(vy), m[2] = 1.0f, m[3] = 1.0f;
+      }
+    for (int i = 0; i < w * h / 500; ++i) {
+      const int x = int(u(rng) * (w - 1)), y = int(u(rng) * (h - 1));
+      for (int c = 0; c < 3; ++c) test.at(x, y, c) += 20.0f;
+    }
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.exr", k);
+    const auto chroma = cm.chromaticities("lin_rec709");
+    metrics::write_exr((dir / "ref" / name).string(), ref, chroma, half);
+    metrics::write_exr((dir / "test" / name).string(), test, chroma, half);
+    metrics::write_exr_data((dir / "motion" / name).string(), motion);
+  }
+  MeasureOptions o;
+  o.reference = (dir / "ref").string();
+  o.tests = {{"test", (dir / "test").string(), ""}};
+  o.motion = (dir / "motion").string();
+  o.metrics = {"deltaE2000"};
+  o.out_dir = (dir / "out").string();
+  o.report = false;
+  std::ostringstream log;
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = measure_sequences(o, log);
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (rc != 0) {
+    std::fprintf(stderr, "error: measure section: exit %d\n%s", rc, log.str().c_str());
+    std::exit(1);
+  }
+  std::ifstream in(dir / "out" / "summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  const auto mean = [](const nlohmann::json& st) { return st.value("mean", 0.0); };
+  std::printf("\nmeasure: %d frames of one %dx%d test sequence against its reference (%s RGBA EXR, ZIP; "
+              "motion float RGBA in the pixels convention), deltaE2000 + flicker + the run's other per-frame "
+              "metrics, %ld metric threads: %.2f s wall, %.2f frames/s (start-up, headers and hashing included)\n",
+              frames, w, h, half ? "half" : "float", metrics::metric_threads(), wall_s, frames / wall_s);
+  std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a test frame", mean(s["variants"][0]["wall_ms"]),
+              1000.0 / mean(s["variants"][0]["wall_ms"]));
+  std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a reference frame", mean(s["references"][0]["wall_ms"]),
+              1000.0 / mean(s["references"][0]["wall_ms"]));
+  for (auto it = s["metric_ms_per_metric"].begin(); it != s["metric_ms_per_metric"].end(); ++it)
+    std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", it.key().c_str(), mean(it.value()), 1000.0 / mean(it.value()));
+  std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "all metrics of a frame", mean(s["metric_ms_per_frame"]),
+              1000.0 / mean(s["metric_ms_per_frame"]));
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+}
+
 int bench(int argc, char** argv) {
   if (!std::getenv("GLINTLAB_BENCH_DEFAULT_MALLOC")) tune_allocator_for_rendering();  // as the glintlab CLI does
   std::string device;
@@ -122,7 +199,7 @@ int bench(int argc, char** argv) {
       ->expected(2)
       ->check(CLI::Range(1, 16384));
   app.add_option("--only", only, "run one section")
-      ->check(CLI::IsMember({"surface", "terrain", "reference", "taa", "metrics"}));
+      ->check(CLI::IsMember({"surface", "terrain", "reference", "taa", "metrics", "measure"}));
   app.add_flag("--smoke", smoke, "every section once at tiny sizes, to check that the bench runs (figures "
                                  "meaningless)");
   CLI11_PARSE(app, argc, argv);
@@ -386,6 +463,10 @@ int bench(int argc, char** argv) {
     std::printf("  %-16s %8.2f ms  (HDR-FLIP preparing the reference for every variant, as before)\n", "flip, unshared",
                 median(alone));
   }
+  // ---- 5. measure: files in, metrics out
+  if (section("measure"))
+    for (bool half : {false, true})
+      measure_section(cm, smoke ? 64 : 1920, smoke ? 36 : 1080, smoke ? 3 : std::max(4, frames), half);
   if (ctx.validation_enabled() && ctx.validation_message_count() > 0) {
     std::fprintf(stderr, "error: the Vulkan validation layer reported %zu message(s); first: %s\n",
                  ctx.validation_message_count(), ctx.validation_messages().front().c_str());

@@ -1,0 +1,642 @@
+#include "experiments/measure/measure.h"
+
+#include "core/util/content_hash.h"
+#include "core/util/io_error.h"
+#include "core/util/json_check.h"
+#include "experiments/cli/exit_codes.h"
+#include "experiments/measure/motion_convention.h"
+#include "experiments/measure/sequence.h"
+#include "experiments/runner/journal.h"
+#include "experiments/runner/output_writers.h"
+#include "experiments/runner/plan.h"
+#include "experiments/runner/progress.h"
+#include "experiments/runner/version.h"
+#include "metrics/color/color_manager.h"
+#include "metrics/color/measurement_space.h"
+#include "metrics/frame_metrics.h"
+#include "metrics/motion_check.h"
+#include "metrics/optical_flow.h"
+#include "metrics/pixel_scan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <iomanip>
+#include <map>
+#include <optional>
+#include <regex>
+#include <set>
+
+namespace fs = std::filesystem;
+
+namespace glintlab {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// Names that are the run folder's own (files and folders a run writes).
+const std::set<std::string>& reserved_names() {
+  static const std::set<std::string> r = {"reference", "motion", "figures", "frames.csv", "summary.json",
+                                          "report.html", "records.jsonl", "contact_sheet.png"};
+  return r;
+}
+
+// A variant name becomes a folder of previews: letters, digits, '.', '_', '-'; not "." or ".."; at most 100.
+void check_name(const std::string& name, const std::string& what) {
+  static const std::regex ok(R"([A-Za-z0-9._-]{1,100})");
+  if (!std::regex_match(name, ok) || name == "." || name == ".." || reserved_names().count(name))
+    throw ConfigError(what + ": the name '" + name + "' is not allowed (1 to 100 of A-Z a-z 0-9 . _ -; not '.', "
+                      "'..' or one of the run folder's own names: reference, motion, figures, frames.csv, ...)");
+}
+
+// A name from a sequence's path: the folder's name, or the file pattern's text before its frame field.
+std::string default_name(const SequenceSpec& seq) {
+  fs::path p(seq.pattern);
+  std::error_code ec;
+  std::string base = fs::is_directory(p, ec) ? p.lexically_normal().filename().string() : p.filename().string();
+  if (base.empty() || base == ".") base = fs::absolute(p).lexically_normal().filename().string();
+  const size_t cut = base.find_first_of("%#");
+  if (cut != std::string::npos && cut > 0) base = base.substr(0, cut);
+  base = std::regex_replace(base, std::regex(R"([^A-Za-z0-9._-])"), "_");
+  while (!base.empty() && (base.back() == '.' || base.back() == '_' || base.back() == '-')) base.pop_back();
+  if (base.empty() || base == "." || base == ".." || reserved_names().count(base)) base = "test";
+  return base.substr(0, 100);
+}
+
+// A sequence of vectors or depth, resolved against its files (colour sequences are FrameFiles).
+struct Source {
+  std::string what;  // for messages: "--motion", "--depth"
+  SequenceSpec seq;
+  std::vector<std::string> paths;     // the selected frames, in order
+  std::vector<std::string> channels;  // what is read of each frame
+};
+
+// Lists `text`'s frames and picks those with the given numbers (every one must exist).
+Source resolve(const std::string& what, const std::string& text, const std::vector<int>& numbers) {
+  Source s;
+  s.what = what;
+  s.seq = parse_sequence(text, what);
+  s.paths = frame_paths(s.seq, numbers, what);
+  return s;
+}
+
+// The frames to measure: the base sequence's numbers within --frames, with no gap.
+std::vector<int> select_numbers(const std::string& what, const std::string& text, int first, int last,
+                                bool range_given) {
+  const SequenceSpec seq = parse_sequence(text, what);
+  std::vector<int> all;
+  for (const auto& f : list_frames(seq, what)) all.push_back(f.number);
+  std::vector<int> out;
+  for (int n : all)
+    if (n >= first && n <= last) out.push_back(n);
+  if (out.empty())
+    throw ConfigError("--frames: " + what + " '" + text + "' has frames " + std::to_string(all.front()) + " to " +
+                      std::to_string(all.back()) + ", none in " + std::to_string(first) + ":" + std::to_string(last));
+  for (size_t i = 1; i < out.size(); ++i)
+    if (out[i] != out[i - 1] + 1)
+      throw ConfigError(what + ": '" + text + "' has a gap: frame " + std::to_string(out[i - 1] + 1) +
+                        (out[i] - out[i - 1] > 2 ? " to " + std::to_string(out[i] - 1) : std::string()) +
+                        " missing (flicker needs consecutive frames; measure the parts apart with --frames)");
+  (void)range_given;
+  return out;
+}
+
+// Every frame of a source: one size, the channels present, within the pixel limit.
+void check_headers(const Source& s, int* width, int* height) {
+  for (const auto& path : s.paths) {
+    const FrameHeader h = read_frame_header(path);
+    if (*width == 0) *width = h.width, *height = h.height;
+    if (h.width != *width || h.height != *height)
+      throw ConfigError(s.what + ": '" + path + "' is " + std::to_string(h.width) + "x" + std::to_string(h.height) +
+                        " but the measurement is " + std::to_string(*width) + "x" + std::to_string(*height) +
+                        " (every frame of every sequence must have one size)");
+    for (const auto& c : s.channels)
+      if (std::find(h.channels.begin(), h.channels.end(), c) == h.channels.end())
+        throw ConfigError(s.what + ": '" + path + "' has no channel '" + c + "' (the sequence's first frame has it); "
+                          "the file has: " + channel_list(h));
+  }
+}
+
+// The layer of a file that holds a convention's vectors, for --motion-from: the colour layer's
+// sibling ("ViewLayer.Combined" -> "ViewLayer.Vector"), else any layer with a vector layer name.
+std::string vector_layer(MotionConvention c, const FrameHeader& h, const std::string& colour_layer) {
+  const std::string parent = colour_layer.find('.') == std::string::npos
+                                 ? std::string()
+                                 : colour_layer.substr(0, colour_layer.rfind('.'));
+  for (const auto& name : motion_layer_names(c)) {
+    const std::string candidate = parent.empty() ? name : parent + "." + name;
+    for (const auto& ch : h.channels)
+      if (ch.rfind(candidate + ".", 0) == 0) return candidate;
+  }
+  for (const auto& ch : h.channels)
+    for (const auto& name : motion_layer_names(c)) {
+      const size_t at = ch.find(name + ".");
+      if (at != std::string::npos && (at == 0 || ch[at - 1] == '.') && ch.find('.', at + name.size() + 1) == std::string::npos)
+        return ch.substr(0, at + name.size());
+    }
+  return "";
+}
+
+// Y of an XYZ image.
+std::vector<float> luminance(const Image& xyz) {
+  std::vector<float> y(xyz.pixel_count());
+  for (size_t i = 0; i < y.size(); ++i) y[i] = xyz.data[i * size_t(xyz.channels) + 1];
+  return y;
+}
+
+// Everything read for one frame index, decoded ahead of the measurement on another thread.
+struct FrameInput {
+  std::optional<ColourFrame> reference;  // images in CIE XYZ D65
+  std::vector<ColourFrame> tests;
+  std::optional<MotionVectors> vectors;  // from files
+  std::optional<Image> depth;
+};
+
+struct Plan {
+  std::optional<FrameFiles> reference;
+  std::vector<FrameFiles> tests;
+  std::vector<std::string> test_names;
+  std::optional<Source> motion, depth;
+  MotionConvention convention = MotionConvention::Pixels;
+  MotionChannels motion_channels;
+  std::vector<int> numbers;
+  int width = 0, height = 0;
+};
+
+FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm) {
+  FrameInput in;
+  if (p.reference) in.reference = read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space);
+  for (const auto& t : p.tests) in.tests.push_back(read_colour_frame(t, k, cm, metrics::kXyzD65Space));
+  if (p.motion) in.vectors = convert_motion(p.convention, read_frame_channels(p.motion->paths[k], p.motion->channels),
+                                            p.motion_channels);
+  if (p.depth) in.depth = read_frame_channels(p.depth->paths[k], p.depth->channels);
+  return in;
+}
+
+// Means of the motion check over the frames, from the journal (variant 0's rows).
+struct MotionMeans final : RecordSink {
+  metrics::MotionExplained sum;
+  int n = 0, pairs = 0, empty_pairs = 0;
+  size_t nonfinite = 0;
+  void frame(const FrameRecord& r) override {
+    if (r.variant != 0) return;
+    std::map<std::string, double> m(r.metrics.begin(), r.metrics.end());
+    auto get = [&](const char* k) { return m.count(k) ? m[k] : std::nan(""); };
+    if (!r.sequence_start) {
+      ++pairs;
+      empty_pairs += get("flicker_valid_px") == 0;
+    }
+    if (get("motion_nonfinite_px") > 0) nonfinite += size_t(get("motion_nonfinite_px"));
+    if (!std::isfinite(get("motion_explained"))) return;
+    sum.given += get("motion_explained");
+    sum.negated += get("motion_explained_negated");
+    sum.flip_y += get("motion_explained_flip_y");
+    sum.flip_x += get("motion_explained_flip_x");
+    ++n;
+  }
+  metrics::MotionExplained mean() const {
+    metrics::MotionExplained m;
+    const double nan = std::nan("");
+    m.given = n ? sum.given / n : nan;
+    m.negated = n ? sum.negated / n : nan;
+    m.flip_y = n ? sum.flip_y / n : nan;
+    m.flip_x = n ? sum.flip_x / n : nan;
+    return m;
+  }
+};
+
+struct DefectFrames final : RecordSink {
+  size_t frames = 0, reference_frames = 0;
+  void frame(const FrameRecord& r) override {
+    frames += !r.scan.clean();
+    for (const auto& [n, v] : r.metrics)
+      if ((n == "reference_nonfinite_px" || n == "reference_negative_px") && v > 0 && r.variant == 0) ++reference_frames;
+  }
+};
+
+nlohmann::json num_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+int measure_sequences(const MeasureOptions& o, std::ostream& log) {
+  metrics::ColorManager cm(o.ocio_config.empty() ? metrics::ColorManager::default_config_path() : o.ocio_config);
+  Plan p;
+  ExperimentSpec spec;
+  nlohmann::json source;
+  std::string disocclusion, motion_kind, motion_source;
+  try {
+    // ---- options, before any file is opened
+    if (o.tests.empty()) throw ConfigError("measure: give at least one --test [NAME=]SEQ");
+    if (o.tests.size() > 64) throw ConfigError("measure: at most 64 --test sequences");
+    if (!(o.fps > 0 && o.fps <= 1000)) throw ConfigError("--fps: must be in (0, 1000], got " + std::to_string(o.fps));
+    if (o.first > o.last)
+      throw ConfigError("--frames: FIRST " + std::to_string(o.first) + " is after LAST " + std::to_string(o.last));
+    if (!o.motion.empty() && !o.motion_from.empty())
+      throw ConfigError("measure: give --motion SEQ or --motion-from, not both");
+    if (!o.motion_from.empty() && o.motion_from != "reference" && o.motion_from != "test")
+      throw ConfigError("--motion-from: '" + o.motion_from + "' is not allowed (reference or test)");
+    if (o.motion_from == "reference" && o.reference.empty())
+      throw ConfigError("--motion-from reference: there is no --reference");
+    if (!o.depth.empty() && o.motion.empty() && o.motion_from.empty())
+      throw ConfigError("--depth: depth is for disocclusion along given vectors; give --motion or --motion-from too "
+                        "(estimated flow uses forward-backward consistency)");
+    {
+      auto c = enum_from_name(kMotionConventionNames, o.motion_convention);
+      if (!c) {
+        throw ConfigError("--motion-convention: '" + o.motion_convention + "' is not known (allowed: " +
+                          enum_name_list(kMotionConventionNames) + ")");
+      }
+      p.convention = *c;
+    }
+    std::vector<std::string> metric_list = o.metrics.empty() ? std::vector<std::string>{"deltaE2000", "flip"} : o.metrics;
+    {
+      const auto allowed = metrics::metric_names();
+      std::set<std::string> seen;
+      for (const auto& m : metric_list) {
+        if (std::find(allowed.begin(), allowed.end(), m) == allowed.end()) {
+          std::string all;
+          for (const auto& a : allowed) all += (all.empty() ? "" : ", ") + a;
+          throw ConfigError("--metrics: '" + m + "' is not a metric (allowed: " + all + ")");
+        }
+        if (!seen.insert(m).second) throw ConfigError("--metrics: '" + m + "' is given twice");
+      }
+    }
+    if (!o.space.empty()) (void)cm.canonical_name(o.space);
+    check_name(o.name, "--name");
+
+    // ---- the frames: numbers from the reference (or the first test), then every sequence resolved
+    const bool range = o.first != INT_MIN || o.last != INT_MAX;
+    const std::string base = o.reference.empty() ? o.tests[0].seq : o.reference;
+    p.numbers = select_numbers(o.reference.empty() ? "--test" : "--reference", base, o.first, o.last, range);
+    if (p.numbers.size() > size_t(kMaxSequenceFrames))
+      throw ConfigError("measure: more than " + std::to_string(kMaxSequenceFrames) + " frames");
+    auto colour_source = [&](const std::string& what, const std::string& text, const std::string& space) {
+      FrameFiles f = open_colour_sequence(text, p.numbers, space.empty() ? o.space : space, cm, "measure: " + what, &p.width, &p.height, log);
+      if (!range) {  // without --frames, every sequence has exactly the frames of the base one
+        const auto all = list_frames(parse_sequence(text, what), what);
+        if (all.size() != p.numbers.size())
+          throw ConfigError(what + ": '" + text + "' has " + std::to_string(all.size()) + " frames (" +
+                            std::to_string(all.front().number) + " to " + std::to_string(all.back().number) +
+                            ") but " + (o.reference.empty() ? "the first test" : "the reference") + " has " +
+                            std::to_string(p.numbers.size()) + " (" + std::to_string(p.numbers.front()) + " to " +
+                            std::to_string(p.numbers.back()) + "); give --frames FIRST:LAST to measure a common range");
+      }
+      return f;
+    };
+    if (!o.reference.empty()) p.reference = colour_source("--reference", o.reference, o.reference_space);
+    std::set<std::string> names;
+    for (const auto& t : o.tests) {
+      const std::string name = t.name.empty() ? default_name(parse_sequence(t.seq, "--test")) : t.name;
+      check_name(name, "--test");
+      if (!names.insert(name).second)
+        throw ConfigError("--test: two tests are named '" + name + "'; name them: --test NAME=SEQ");
+      p.tests.push_back(colour_source("--test " + name, t.seq, t.space));
+      p.test_names.push_back(name);
+    }
+    const std::string colour_of_motion = o.motion_from == "reference" ? o.reference
+                                         : o.motion_from == "test"    ? o.tests[0].seq
+                                                                      : std::string();
+    if (!o.motion.empty() || !colour_of_motion.empty()) {
+      const std::string what = !colour_of_motion.empty() ? "--motion-from " + o.motion_from : "--motion";
+      Source m = resolve(what, colour_of_motion.empty() ? o.motion : colour_of_motion, p.numbers);
+      const FrameHeader h = read_frame_header(m.paths[0]);
+      std::string layer = m.seq.layer;
+      if (!colour_of_motion.empty()) {
+        layer = vector_layer(p.convention, h, m.seq.layer);
+        if (layer.empty() && p.convention != MotionConvention::Pixels)
+          throw ConfigError(m.what + ": '" + m.paths[0] + "' has no layer of " +
+                            std::string(enum_name(kMotionConventionNames, p.convention)) +
+                            " vectors; the file has: " + channel_list(h));
+      }
+      p.motion_channels = motion_channels(p.convention, h, layer, m.paths[0]);
+      m.channels = p.motion_channels.backward;
+      m.channels.insert(m.channels.end(), p.motion_channels.forward.begin(), p.motion_channels.forward.end());
+      m.channels.insert(m.channels.end(), p.motion_channels.distances.begin(), p.motion_channels.distances.end());
+      p.motion = std::move(m);
+      motion_kind = "exact";
+      motion_source = p.motion->what + " " + (o.motion.empty() ? p.motion->seq.text : o.motion) +
+                      (layer.empty() ? std::string() : " (layer " + layer + ")");
+    } else {
+      motion_kind = "estimated";
+      motion_source = std::string("optical flow (OpenCV DIS) of ") + (p.reference ? "the reference" : "the first test");
+    }
+    if (!o.depth.empty()) {
+      Source d = resolve("--depth", o.depth, p.numbers);
+      const FrameHeader h = read_frame_header(d.paths[0]);
+      auto z = find_channels(h, d.seq.layer, {{"Z", "z", "Y", "R", "depth", "Depth", "Depth.Z"}});
+      if (z[0].empty())
+        throw ConfigError("--depth: '" + d.paths[0] + "' has no depth channel (Z, Y or R" +
+                          (d.seq.layer.empty() ? std::string() : " of layer " + d.seq.layer) +
+                          "); the file has: " + channel_list(h));
+      d.channels = z;
+      p.depth = std::move(d);
+    }
+    const bool distances = p.motion && !p.motion_channels.distances.empty();
+    const bool fb = (p.motion && !p.motion_channels.forward.empty()) || motion_kind == "estimated";
+    disocclusion = distances                    ? "glintlab's distance channels"
+                   : p.depth && fb               ? "depth, and forward-backward consistency"
+                   : p.depth                     ? "depth"
+                   : fb                          ? "forward-backward consistency"
+                                                 : "off-screen only (no depth, no vectors to the next frame)";
+
+    // ---- every header, before any pixel (the colour sequences' are checked as they are opened)
+    if (p.motion) check_headers(*p.motion, &p.width, &p.height);
+    if (p.depth) check_headers(*p.depth, &p.width, &p.height);
+
+    // ---- what the run is: options and the content of every file (the journal header)
+    nlohmann::json tests = nlohmann::json::array();
+    for (size_t i = 0; i < o.tests.size(); ++i)
+      tests.push_back({{"name", p.test_names[i]}, {"frames", o.tests[i].seq}, {"space", p.tests[i].space}});
+    source = {{"reference", o.reference},
+              {"reference_space", p.reference ? p.reference->space : ""},
+              {"tests", tests},
+              {"motion", o.motion},
+              {"motion_from", o.motion_from},
+              {"motion_convention", o.motion_convention},
+              {"depth", o.depth},
+              {"metrics", metric_list},
+              {"frames", {p.numbers.front(), p.numbers.back()}},
+              {"fps", o.fps},
+              {"name", o.name}};
+
+    spec.name = o.name;
+    spec.file = o.file;
+    spec.width = p.width;
+    spec.height = p.height;
+    spec.frames = int(p.numbers.size());
+    spec.working_space = metrics::kXyzD65Space;  // inputs are converted from their own spaces once
+    spec.metrics = metric_list;
+    spec.reference.enabled = bool(p.reference);
+    spec.reference.grid = 0;
+    spec.reference.frames = o.reference;
+    spec.output.exr = false;
+    spec.output.png = true;
+    spec.output.every = std::max(1, int((p.numbers.size() + 7) / 8));  // at most 8 previews a sequence
+    spec.output.contact_sheet = false;
+    if (!o.display.empty()) spec.output.display = o.display;
+    if (!o.view.empty()) spec.output.view = o.view;
+    spec.output.exposure = o.exposure;
+    for (size_t i = 0; i < p.tests.size(); ++i) {
+      VariantSpec v;
+      v.name = p.test_names[i];
+      v.frames = o.tests[i].seq;
+      spec.variants.push_back(v);
+    }
+    spec.source = source;
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  // ---- hashes (the journal's identity of this run), then the journal
+  nlohmann::json hashes = nlohmann::json::object();
+  auto add_hashes = [&](const auto& s) {
+    for (const auto& path : s.paths)
+      if (!hashes.contains(path)) hashes[path] = file_content_hash(path);
+  };
+  if (p.reference) add_hashes(*p.reference);
+  for (const auto& t : p.tests) add_hashes(t);
+  if (p.motion) add_hashes(*p.motion);
+  if (p.depth) add_hashes(*p.depth);
+  const nlohmann::json header = {{"type", "run"},
+                                 {"glintlab_version", version()},
+                                 {"command", "measure"},
+                                 {"file", ""},
+                                 {"source", source},
+                                 {"content_hash", core::hash_hex(source.dump())},
+                                 {"inputs", hashes},
+                                 {"ocio_config", file_content_hash(cm.config_path())},
+                                 {"overrides", nlohmann::json::object()},
+                                 {"shard", {0, 1}}};
+  const fs::path out_dir(o.out_dir);
+  fs::create_directories(out_dir);
+  std::unique_ptr<Journal> journal;
+  try {
+    journal = std::make_unique<Journal>(out_dir, header, o.resume);
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  RunPlan plan;
+  plan.spec = &spec;
+  plan.frames = spec.frames;
+  plan.measure = true;
+  for (const auto& v : spec.variants) {
+    RunPlan::Variant pv;
+    pv.spec = &v;
+    pv.reference = p.reference ? 0 : -1;
+    plan.variants.push_back(pv);
+  }
+  if (p.reference) {
+    RunPlan::Reference r;
+    r.name = "reference";
+    for (size_t i = 0; i < plan.variants.size(); ++i) r.variants.push_back(int(i));
+    plan.references.push_back(r);
+  }
+
+  log << "measure: " << p.tests.size() << " test sequence(s)" << (p.reference ? " against a reference" : ", no reference")
+      << ", frames " << p.numbers.front() << " to " << p.numbers.back() << " at " << p.width << "x" << p.height
+      << "; motion " << motion_kind << " (" << motion_source << "); disocclusion: " << disocclusion << "\n";
+  if (motion_kind == "estimated")
+    log << "note: no motion vectors given: flicker is measured along optical flow estimated from "
+        << (p.reference ? "the reference" : "the first test") << ", marked \"motion\": \"estimated\"\n";
+
+  // ---- the frames this invocation does: from the first one the journal lacks (its predecessor is
+  // read again for the temporal state, not recorded again)
+  const int count = int(p.numbers.size());
+  int first_missing = count;
+  for (int k = 0; k < count && first_missing == count; ++k)
+    for (size_t i = 0; i < p.tests.size(); ++i)
+      if (!journal->has_frame(int(i), k)) first_missing = std::min(first_missing, k);
+  if (o.resume) log << "resume: " << journal->frames().size() << " frame record(s) done\n";
+
+  ImageWriter images(out_dir, plan, cm);
+  const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
+  std::vector<metrics::FlickerTracker> trackers(p.tests.size());
+  size_t defect_frames = 0;
+  if (first_missing < count) {
+    const int start = std::max(0, first_missing - 1);
+    Progress progress(log, o.name, int(p.tests.size()) * (count - start));
+    std::future<FrameInput> next =
+        std::async(std::launch::async, [&p, &cm, start] { return read_inputs(p, size_t(start), cm); });
+    std::optional<FrameInput> prev;
+    std::optional<Image> prev_motion_forward;
+    std::vector<float> prev_ref_y;
+    for (int k = start; k < count; ++k) {
+      FrameInput in = next.get();
+      if (k + 1 < count)
+        next = std::async(std::launch::async, [&p, &cm, k] { return read_inputs(p, size_t(k) + 1, cm); });
+      const ColourFrame& base = in.reference ? *in.reference : in.tests[0];
+      // ---- the motion of frame k in glintlab's convention, with its mask
+      Image motion;
+      size_t motion_bad = 0;
+      if (in.vectors) {
+          motion = flicker_motion(*in.vectors, in.depth ? &*in.depth : nullptr,
+                                prev_motion_forward ? &*prev_motion_forward : nullptr);
+        prev_motion_forward = in.vectors->forward;
+      } else if (k > 0 && prev) {
+        const ColourFrame& prev_base = prev->reference ? *prev->reference : prev->tests[0];
+        metrics::FlowOptions flow;
+        flow.channel = 1;  // Y of XYZ
+        flow.forward_backward = true;
+        motion = metrics::estimate_motion(prev_base.image, base.image, flow);
+      } else {
+        motion = Image(p.width, p.height, 4, 1.0f);
+        for (size_t i = 0; i < motion.pixel_count(); ++i) motion.data[4 * i] = motion.data[4 * i + 1] = 0.0f;
+      }
+      if (in.vectors) {  // NaN/Inf vectors are counted; the tracker masks them (off-screen)
+        for (size_t i = 0; i < motion.pixel_count(); ++i)
+          motion_bad += !(std::isfinite(motion.data[4 * i]) && std::isfinite(motion.data[4 * i + 1]));
+      }
+      // ---- the motion check on the base sequence's own change
+      const std::vector<float> ref_y = luminance(base.image);
+      metrics::MotionExplained me;
+      const double nan = std::nan("");
+      me.given = me.negated = me.flip_y = me.flip_x = nan;
+      if (k > 0 && !prev_ref_y.empty()) me = metrics::motion_explained(prev_ref_y, ref_y, p.width, p.height, motion);
+      prev_ref_y = ref_y;
+      std::optional<metrics::FrameMetrics::Reference> prepared;
+      if (in.reference) prepared = measure.prepare(in.reference->image);
+      const bool emit_reference = k >= first_missing;
+      if (in.reference && emit_reference) {
+        ReferenceRecord rr;
+        rr.reference = 0;
+        rr.name = "reference";
+        rr.frame = k;
+        rr.image = &in.reference->image;
+        rr.cached = false;
+        rr.wall_ms = in.reference->read_ms;
+        rr.gpu_ms = nan;
+        for (RecordSink* s : std::initializer_list<RecordSink*>{journal.get(), &images}) s->reference(rr);
+      }
+      if (in.reference && !in.reference->scan.clean() && emit_reference)
+        log << "\nwarning: the reference frame " << p.numbers[size_t(k)] << " ('" << p.reference->paths[size_t(k)]
+            << "') has " << in.reference->scan.nan << " NaN, " << in.reference->scan.infinite << " Inf, "
+            << in.reference->scan.negative << " negative pixels: every metric of that frame is NaN\n";
+      if (motion_bad > 0 && emit_reference)
+        log << "\nwarning: motion vectors of frame " << p.numbers[size_t(k)] << " have " << motion_bad
+            << " non-finite pixels (left out of the flicker means)\n";
+      for (size_t i = 0; i < p.tests.size(); ++i) {
+        const ColourFrame& t = in.tests[i];
+        FrameRecord rec;
+        rec.variant = int(i);
+        rec.name = spec.variants[i].name;
+        rec.frame = k;
+        rec.time_s = k / o.fps;
+        rec.sequence_start = k == 0;
+        rec.spp = 0;
+        rec.gpu_ms = nan;
+        rec.wall_ms = t.read_ms;
+        rec.scan = t.scan;
+        rec.image = &t.image;
+        if (k == 0) trackers[i].reset();
+        if (prepared) {
+          rec.metrics = measure.measure(t.image, *prepared, motion, trackers[i], &rec.metric_cost_ms);
+        } else {  // no reference: the test's own flicker
+          auto t0 = Clock::now();
+          std::optional<metrics::FlickerFrame> f = trackers[i].push(t.image, metrics::flicker_reference(t.image), motion);
+          rec.metrics.emplace_back("flicker_contrast", f ? f->flicker_contrast : nan);
+          rec.metrics.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
+          rec.metrics.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
+          rec.metric_cost_ms.emplace_back("flicker", ms_since(t0));
+        }
+        const bool bad_ref = in.reference && !in.reference->scan.clean();
+        if (!t.scan.clean() || bad_ref)
+          for (auto& [n, v] : rec.metrics)
+            if (n.size() < 3 || n.compare(n.size() - 3, 3, "_px") != 0) v = nan;
+        rec.metrics.emplace_back("motion_explained", me.given);
+        rec.metrics.emplace_back("motion_explained_negated", me.negated);
+        rec.metrics.emplace_back("motion_explained_flip_y", me.flip_y);
+        rec.metrics.emplace_back("motion_explained_flip_x", me.flip_x);
+        rec.metrics.emplace_back("motion_nonfinite_px", double(motion_bad));
+        if (in.reference) {
+          rec.metrics.emplace_back("reference_nonfinite_px", double(in.reference->scan.nan + in.reference->scan.infinite));
+          rec.metrics.emplace_back("reference_negative_px", double(in.reference->scan.negative));
+        }
+        if (k >= first_missing && !journal->has_frame(int(i), k)) {
+          if (!t.scan.clean()) {
+            ++defect_frames;
+            log << "\nwarning: " << rec.name << " frame " << p.numbers[size_t(k)] << ": " << t.scan.nan << " NaN, "
+                << t.scan.infinite << " Inf, " << t.scan.negative << " negative pixels\n";
+          }
+          journal->frame(rec);
+          images.frame(rec);
+        }
+        std::ostringstream detail;
+        detail << rec.name << " frame " << p.numbers[size_t(k)] << (k < first_missing ? " (replay)" : "");
+        progress.step(detail.str());
+      }
+      prev = std::move(in);
+    }
+  }
+
+  // ---- outputs, from the journal; the motion check over the run
+  MotionMeans mm;
+  journal->replay(mm);
+  const metrics::MotionExplained mean = mm.mean();
+  const std::string warning = metrics::motion_warning(mean);
+  nlohmann::json warnings = nlohmann::json::array();
+  if (!warning.empty()) warnings.push_back(warning);
+  if (mm.empty_pairs > 0)
+    warnings.push_back(std::to_string(mm.empty_pairs) + " of " + std::to_string(mm.pairs) +
+                       " frame pairs have no pixel along the motion (every pixel background, disoccluded or "
+                       "off-screen): are the vectors and distances what the convention says?");
+  if (mm.nonfinite > 0)
+    warnings.push_back(std::to_string(mm.nonfinite) + " motion vector values are NaN or Inf (those pixels are left out)");
+  nlohmann::json extra = {
+      {"command", "measure"},
+      {"motion", motion_kind},
+      {"motion_source", motion_source},
+      {"motion_convention", motion_kind == "exact" ? nlohmann::json(o.motion_convention) : nlohmann::json(nullptr)},
+      {"disocclusion", disocclusion},
+      {"motion_explained",
+       {{"mean", num_or_null(mean.given)},
+        {"negated", num_or_null(mean.negated)},
+        {"flip_y", num_or_null(mean.flip_y)},
+        {"flip_x", num_or_null(mean.flip_x)},
+        {"frames", mm.n},
+        {"meaning", "mean |dR| along the vectors / at a fixed pixel (PQ luminance of the reference, or of the first "
+                    "test without one): 0 = the vectors explain all of its change, 1 = no more than no motion"}}},
+      {"warnings", warnings},
+      {"frame_numbers", {p.numbers.front(), p.numbers.back()}},
+      {"fps", o.fps},
+      {"sources", source}};
+  for (const auto& w : warnings) log << "warning: " << w.get<std::string>() << "\n";
+  int report_status = kExitOk;
+  const nlohmann::json summary = write_run_outputs(out_dir, plan, {journal.get()},
+                                                   RunInfo{"", cm.config_path(), 0, extra}, images, o.report,
+                                                   &report_status, log);
+  for (const auto& v : summary["variants"]) {
+    const auto& m = v["metrics"];
+    auto mean_of = [&](const char* n) -> std::string {
+      if (!m.contains(n) || m[n]["mean"].is_null()) return "-";
+      std::ostringstream s;
+      s << std::setprecision(4) << m[n]["mean"].get<double>();
+      return s.str();
+    };
+    log << "  " << std::left << std::setw(20) << v["name"].get<std::string>() << std::right
+        << " deltaE2000 " << std::setw(9) << mean_of("deltaE2000") << "  flicker_ratio " << std::setw(9)
+        << mean_of("flicker_ratio") << "  temporal_error_mc " << std::setw(10) << mean_of("temporal_error_mc")
+        << "  flicker_contrast " << std::setw(9) << mean_of("flicker_contrast") << "\n";
+  }
+  DefectFrames defects;
+  journal->replay(defects);
+  if (defects.frames + defects.reference_frames > 0) {
+    log << "error: " << defects.frames << " test frame(s) and " << defects.reference_frames
+        << " reference frame(s) had NaN, Inf or negative pixels (see frames.csv); their metrics are NaN\n";
+    return kExitDefect;
+  }
+  (void)defect_frames;
+  return report_status;
+}
+
+}  // namespace glintlab

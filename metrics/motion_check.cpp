@@ -1,0 +1,106 @@
+#include "metrics/motion_check.h"
+
+#include "metrics/flicker.h"
+#include "metrics/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+namespace glintlab::metrics {
+
+namespace {
+
+// Bilinear value of a plane at texel-index coordinates (centres at integers), edges clamped.
+double bilinear_clamped(const std::vector<double>& p, int w, int h, double qx, double qy) {
+  qx = std::clamp(qx, 0.0, double(w - 1));
+  qy = std::clamp(qy, 0.0, double(h - 1));
+  const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
+  const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+  const double fx = qx - x0, fy = qy - y0;
+  auto at = [&](int x, int y) { return p[size_t(y) * size_t(w) + size_t(x)]; };
+  return (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x1, y0) + (1 - fx) * fy * at(x0, y1) +
+         fx * fy * at(x1, y1);
+}
+
+std::vector<double> pq_plane(const std::vector<float>& y) {
+  std::vector<double> d(y.begin(), y.end());
+  perceptual_luminance_n(d.data(), d.data(), d.size());
+  return d;
+}
+
+}  // namespace
+
+MotionExplained motion_explained(const std::vector<float>& y_prev, const std::vector<float>& y_now, int w, int h,
+                                 const Image& motion) {
+  const size_t n = size_t(w) * size_t(h);
+  if (y_prev.size() != n || y_now.size() != n || motion.width != w || motion.height != h || motion.channels < 4)
+    throw std::invalid_argument("motion_explained: the luminance planes and the 4-channel motion image differ in size");
+  const std::vector<double> p0 = pq_plane(y_prev), p1 = pq_plane(y_now);
+  struct Row {
+    double fixed = 0, cand[4] = {0, 0, 0, 0};
+    size_t n = 0;
+  };
+  std::vector<Row> rows(static_cast<size_t>(h));
+  static constexpr double kSign[4][2] = {{1, 1}, {-1, -1}, {1, -1}, {-1, 1}};  // given, negated, flip y, flip x
+  parallel_for(h, [&](long yl) {
+    const int y = int(yl);
+    Row& r = rows[size_t(y)];
+    for (int x = 0; x < w; ++x) {
+      const float* m = motion.px(x, y);
+      if (!(m[2] > 0.0f) || m[3] < 0.0f) continue;
+      const double vx = m[0], vy = m[1];
+      const double qx = x - vx, qy = y - vy;
+      if (!(std::isfinite(qx) && std::isfinite(qy) && qx >= 0 && qy >= 0 && qx <= w - 1 && qy <= h - 1)) continue;
+      const double now = p1[size_t(y) * size_t(w) + size_t(x)];
+      r.fixed += std::abs(now - p0[size_t(y) * size_t(w) + size_t(x)]);
+      for (int c = 0; c < 4; ++c)
+        r.cand[c] += std::abs(now - bilinear_clamped(p0, w, h, x - kSign[c][0] * vx, y - kSign[c][1] * vy));
+      ++r.n;
+    }
+  });
+  double fixed = 0, cand[4] = {0, 0, 0, 0};
+  MotionExplained out;
+  for (const Row& r : rows) {
+    fixed += r.fixed;
+    for (int c = 0; c < 4; ++c) cand[c] += r.cand[c];
+    out.pixels += r.n;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto ratio = [&](double a) { return out.pixels > 0 && fixed > 0 ? a / fixed : nan; };
+  out.given = ratio(cand[0]);
+  out.negated = ratio(cand[1]);
+  out.flip_y = ratio(cand[2]);
+  out.flip_x = ratio(cand[3]);
+  return out;
+}
+
+std::string motion_warning(const MotionExplained& m) {
+  if (!std::isfinite(m.given)) return "";
+  struct Mirror {
+    double value;
+    const char* what;
+  };
+  const Mirror mirrors[3] = {
+      {m.negated, "their sign: negated (-x, -y) they explain the change better (vectors p_{t-1} - p_t, or "
+                  "pointing to the next frame instead of the previous one?)"},
+      {m.flip_y, "their y axis: with y flipped they explain the change better (+y up in the file; glintlab's "
+                 "grows downwards)"},
+      {m.flip_x, "their x axis: with x flipped they explain the change better"}};
+  const Mirror* best = nullptr;
+  for (const Mirror& x : mirrors)
+    if (std::isfinite(x.value) && x.value < m.given * (1.0 - kMotionMirrorMargin) && (!best || x.value < best->value))
+      best = &x;
+  char figures[160];
+  std::snprintf(figures, sizeof figures, " (motion_explained %.3f as given; negated %.3f, y flipped %.3f, x flipped %.3f)",
+                m.given, m.negated, m.flip_y, m.flip_x);
+  if (best) return std::string("the motion vectors look wrong in ") + best->what + figures;
+  if (m.given >= 1.0)
+    return std::string("the motion vectors explain less of the reference's change than no motion at all: wrong units "
+                       "(NDC or UV read as pixels?), vectors of another frame, or not motion vectors") + figures;
+  return "";
+}
+
+}  // namespace glintlab::metrics
