@@ -149,12 +149,12 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
   }
   std::vector<double> pqt = perceptual_luminance_plane(yt, w, h);
   std::optional<FlickerFrame> result;
+  std::vector<float> own_adaptation = adaptation_luminance(test_xyz);
   if (pushed_ > 0) {
-    const std::vector<float> own_adaptation = adaptation_luminance(test_xyz);
     const std::vector<Reprojected> warp = reproject(motion, prev_dist_);
     // Sums per row in parallel, then over rows in order: the same result for any thread count.
     struct Row {
-      double ct = 0, cr = 0, cs = 0, emc = 0, e = 0, dt = 0, dr = 0;
+      double ct = 0, cr = 0, cs = 0, emc = 0, e = 0, dt = 0, dr = 0, excess = 0, lag = 0, excess_fixed = 0;
       std::size_t valid = 0, disoccluded = 0, background = 0;
     };
     std::vector<Row> rows(static_cast<size_t>(h));
@@ -179,6 +179,12 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
         row.e += std::abs(dT - dR);
         row.dt += std::abs(dT);
         row.dr += std::abs(dR);
+        const double denom = double(ref.adaptation[i]) + kContrastEpsilon;
+        {  // fixed gaze, at the eye's resolution
+          const double fT = std::abs(double(own_adaptation[i]) - prev_ya_test_[i]);
+          const double fR = std::abs(double(ref.adaptation[i]) - prev_ref_.adaptation[i]);
+          row.excess_fixed += std::max(0.0, fT - fR) / denom;
+        }
         // Along the motion.
         const Reprojected& rp = warp[i];
         if (rp.state == Reprojected::kBackground) {
@@ -193,16 +199,21 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
         const double pq_t_prev = prev_pq[2 * k], pq_r_prev = prev_pq[2 * k + 1];
         ++k;
         ++row.valid;
-        const double denom = double(ref.adaptation[i]) + kContrastEpsilon;
         row.ct += std::abs(double(yt[i]) - t_prev) / denom;
         row.cr += std::abs(double(ref.y[i]) - r_prev) / denom;
         row.cs += std::abs(double(yt[i]) - t_prev) / (double(own_adaptation[i]) + kContrastEpsilon);
+        // One-sided, both frames low-passed at the eye's resolution before the difference.
+        const double lT = std::abs(double(own_adaptation[i]) - rp.sample(prev_ya_test_));
+        const double lR = std::abs(double(ref.adaptation[i]) - rp.sample(prev_ref_.adaptation));
+        row.excess += std::max(0.0, lT - lR) / denom;
+        row.lag += std::max(0.0, lR - lT) / denom;
         row.emc += std::abs((pqt[i] - ref.pq[i]) - (pq_t_prev - pq_r_prev));
       }
     });
     FlickerFrame f;
-    double s_ct = 0, s_cr = 0, s_cs = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0;
+    double s_ct = 0, s_cr = 0, s_cs = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0, s_x = 0, s_l = 0, s_xf = 0;
     for (const Row& r : rows) {
+      s_x += r.excess, s_l += r.lag, s_xf += r.excess_fixed;
       s_ct += r.ct, s_cr += r.cr, s_cs += r.cs, s_emc += r.emc, s_e += r.e, s_dt += r.dt, s_dr += r.dr;
       f.valid_px += r.valid, f.disoccluded_px += r.disoccluded, f.background_px += r.background;
     }
@@ -213,6 +224,9 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
     f.mean_contrast_test = s_ct * inv_v;
     f.mean_contrast_ref = s_cr * inv_v;
     f.flicker_contrast = s_cs * inv_v;
+    f.flicker_excess = s_x * inv_v;
+    f.temporal_lag = s_l * inv_v;
+    f.flicker_excess_fixed = s_xf * inv_n;
     f.temporal_error_mc = s_emc * inv_v;
     f.flicker_ratio = flicker_ratio(f.mean_contrast_test, f.mean_contrast_ref);
     frames_.push_back(f);
@@ -223,6 +237,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
   prev_yt_ = std::move(yt);
   prev_pqt_ = std::move(pqt);
   prev_dist_ = std::move(dist);
+  prev_ya_test_ = std::move(own_adaptation);
   prev_ref_ = ref;
   ++pushed_;
   return result;
@@ -235,6 +250,7 @@ void FlickerTracker::reset() {
   prev_pqt_.clear();
   prev_ref_ = FlickerReference{};
   prev_dist_.clear();
+  prev_ya_test_.clear();
 }
 
 }  // namespace glintlab::metrics

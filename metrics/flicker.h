@@ -36,6 +36,25 @@
 //   temporal_error_mc = the same along the motion (unmasked pixels): mean |e_t(p) - e_{t-1}(p - v)|
 //   frame_diff_ratio  = mean |ΔT| / mean |ΔR| at a fixed pixel in PQ (the former flicker ratio; it
 //                       measures content moving across pixels, kept for comparison only)
+// One-sided, at the eye's resolution (what a viewer agreed with; the ratio above is kept as a
+// diagnostic). The ratio differences full-resolution frames, and bilinear resampling of the previous
+// frame blurs a sub-pixel feature, so a sparkle moving exactly with the surface "changes" (a ratio of
+// 2.4 for perfectly coherent sparkles). Here both frames are first low-passed by the adaptation's
+// Gaussian (σ = 2 px, the spatial channel perceptual metrics apply anyway): X̃ = G_σ * Y, and
+//   ΔX̃_t(p) = X̃_t(p) − X̃_{t−1}(p − v)       (bilinear; the blurred plane is band-limited, so the
+//                                              interpolation error of a coherent feature is small:
+//                                              tests/metrics/temporal.cpp states its bound)
+//   flicker_excess_t = mean_p max(0, |ΔT̃| − |ΔR̃|) / (Y_a(p) + ε)   change the test has beyond the
+//                                              truth's (>= 0; 0 = no added flicker)
+//   temporal_lag_t   = mean_p max(0, |ΔR̃| − |ΔT̃|) / (Y_a(p) + ε)   the truth's change the test lacks
+//                                              (>= 0; TAA's lag and ghosting)
+// over the unmasked pixels, so "twinkles too much" and "smooth but wrong" read apart; a method whose
+// changes are as large as the truth's but elsewhere has both. Gaze: the above assume the eye tracks
+// the surface; the fixed-gaze counterpart
+//   flicker_excess_fixed_t = mean over every pixel of max(0, |T̃_t(p) − T̃_{t−1}(p)| − |R̃_t(p) − R̃_{t−1}(p)|)
+//                            / (Y_a(p) + ε)
+// tells screen-fixed artefacts (a dot stuck on the screen flickers for a tracking eye, not for a
+// fixed one) from twinkling ones (excess in both).
 //   flicker_contrast  = mean |ΔT_t(p)| / (Y_a,T(p) + ε) over unmasked pixels: the test's own flicker,
 //                       its change along the motion as Weber contrast against its *own* low-passed
 //                       luminance (the same σ and ε), needing no reference: what a CI job gates on
@@ -79,6 +98,9 @@ struct FlickerFrame {
   double temporal_error_mc = 0.0;    // along the motion, unmasked pixels, PQ
   double frame_diff_ratio = 1.0;     // mean|ΔT| / mean|ΔR| at fixed pixels, PQ
   double flicker_contrast = 0.0;     // mean |ΔT| / (Y_a,T + ε): the test's own, no reference
+  double flicker_excess = 0.0;       // mean max(0, |ΔT̃| − |ΔR̃|) / (Y_a + ε), along the motion
+  double temporal_lag = 0.0;         // mean max(0, |ΔR̃| − |ΔT̃|) / (Y_a + ε), along the motion
+  double flicker_excess_fixed = 0.0; // the excess at a fixed pixel (fixed gaze), every pixel
   std::size_t valid_px = 0;          // pixels in the along-the-motion means
   std::size_t disoccluded_px = 0;    // masked: hidden or off-screen in frame t-1
   std::size_t background_px = 0;     // masked: no surface
@@ -136,7 +158,7 @@ class FlickerTracker {
  private:
   std::size_t pushed_ = 0;
   int width_ = 0, height_ = 0;
-  std::vector<float> prev_yt_, prev_dist_;
+  std::vector<float> prev_yt_, prev_dist_, prev_ya_test_;
   std::vector<double> prev_pqt_;
   FlickerReference prev_ref_;
   std::vector<FlickerFrame> frames_;

@@ -41,7 +41,8 @@ std::vector<std::string> FrameMetrics::names() const {
     n.push_back(m + "_max");
   }
   for (const char* s : {"flicker_ratio", "temporal_error", "temporal_error_mc", "frame_diff_ratio",
-                        "flicker_contrast", "flicker_valid_px", "flicker_disoccluded_px", "glint_density_test", "glint_density_ref",
+                        "flicker_contrast", "flicker_excess", "temporal_lag", "flicker_excess_fixed",
+                        "flicker_valid_px", "flicker_disoccluded_px", "glint_density_test", "glint_density_ref",
                         "glint_hist_emd_oct"})
     n.emplace_back(s);
   for (int b : default_pool_block_sizes()) {
@@ -93,6 +94,9 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
     put("temporal_error_mc", f ? f->temporal_error_mc : nan);
     put("frame_diff_ratio", f ? f->frame_diff_ratio : nan);
     put("flicker_contrast", f ? f->flicker_contrast : nan);
+    put("flicker_excess", f ? f->flicker_excess : nan);
+    put("temporal_lag", f ? f->temporal_lag : nan);
+    put("flicker_excess_fixed", f ? f->flicker_excess_fixed : nan);
     v.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
     v.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
   });

@@ -5,6 +5,7 @@
 //
 //   <m>, <m>_max           per-pixel metric m of the registry: mean and max over pixels
 //   flicker_ratio, temporal_error, temporal_error_mc, frame_diff_ratio, flicker_contrast,
+//   flicker_excess, temporal_lag, flicker_excess_fixed,
 //   flicker_valid_px, flicker_disoccluded_px     (metrics/flicker.h; from the second frame on)
 //   glint_density_test, glint_density_ref, glint_hist_emd_oct   (metrics/glint_stats.h)
 //   pooled_bias_<s>, pooled_rms_<s> for s = 2 ... 64, and pooled_error = pooled_rms_8

@@ -40,7 +40,8 @@ const std::map<std::string, double>& default_check_tolerances() {
   static const std::map<std::string, double> t = {
       {"deltaE2000", 0.02},        {"flip", 0.02},          {"flicker_ratio", 0.02}, {"temporal_error", 0.02},
       {"temporal_error_mc", 0.02}, {"pooled_error", 0.05},  {"nonfinite_pixels", 0.0},
-      {"negative_pixels", 0.0},   {"flicker_contrast", 0.02}};
+      {"negative_pixels", 0.0},   {"flicker_contrast", 0.02},
+      {"flicker_excess", 0.05},    {"temporal_lag", 0.05}};
   return t;
 }
 

@@ -89,7 +89,23 @@ METRICS = {
                        "frame-to-frame change that the reference does not have. 0 = the error is constant over "
                        "time. Lower is better."),
     "temporal_error_mc": ("temporal error (motion-compensated)", "min",
-                          "The temporal error measured along the motion instead of at a fixed pixel. Lower is better."),
+                          "The temporal error measured along the motion instead of at a fixed pixel: the change "
+                          "that does not match the truth's. This report ranks temporal stability by it. Lower is "
+                          "better."),
+    "flicker_excess": ("flicker excess", "min",
+                       "The change along the motion the test has beyond the truth's, per pixel and one-sided, both "
+                       "frames low-passed at the eye's resolution (σ = 2 px) first, as Weber contrast: 0 = no "
+                       "added flicker. “Twinkles too much”. Lower is better."),
+    "temporal_lag": ("temporal lag", "min",
+                     "The truth's change along the motion that the test lacks (one-sided, low-passed as flicker "
+                     "excess): history lag and ghosting. “Smooth but wrong”. Lower is better."),
+    "flicker_excess_fixed": ("flicker excess (fixed gaze)", "min",
+                             "Flicker excess at a fixed pixel instead of along the motion: what an eye that does "
+                             "not follow the surface sees. Screen-fixed artefacts have excess along the motion "
+                             "only. Lower is better."),
+    "flicker_contrast": ("flicker contrast", "min",
+                         "The test's own change along the motion as Weber contrast against its own low-passed "
+                         "luminance; needs no reference (what `measure` gives without one). Lower is steadier."),
     "frame_diff_ratio": ("frame-difference ratio", "one",
                          "Mean |ΔT| / mean |ΔR| between consecutive frames at a fixed pixel (PQ): like the flicker "
                          "ratio but without following the motion. Best is closest to 1."),
@@ -108,10 +124,13 @@ METRICS = {
     "nonfinite_pixels": ("NaN/Inf pixels", "min", "Pixels that are NaN or infinite (a defect: should be 0)."),
     "negative_pixels": ("negative pixels", "min", "Pixels with a finite negative value (a defect: should be 0)."),
 }
-TABLE_METRICS = ["deltaE2000", "flip", "flicker_ratio", "temporal_error", "temporal_error_mc", "deltaEITP", "psnr",
+TABLE_METRICS = ["deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag", "flicker_ratio",
+                 "flicker_excess_fixed", "temporal_error", "flicker_contrast", "deltaEITP", "psnr",
                  "pooled_error", "glint_density_test", "glint_density_ref", "glint_hist_emd_oct", "nonfinite_pixels",
                  "negative_pixels"]
-PARETO_METRICS = ["deltaE2000", "flip", "flicker_ratio"]
+# Temporal stability is ranked by temporal_error_mc (the change that does not match the truth); the
+# flicker ratio is a diagnostic (it ranks lag as flicker and magnitude over agreement).
+PARETO_METRICS = ["deltaE2000", "flip", "temporal_error_mc"]
 CURVE_METRICS = ["flicker_ratio", "deltaE2000"]
 AA_MARKERS = {"none": "o", "ssaa": "s", "taa": "^"}
 
@@ -686,8 +705,13 @@ class Report:
         glance = []
         for metric, best, front in self.glance:
             cheapest = front[0] if front else None
+            extra = ""
+            if metric == "temporal_error_mc":
+                bv = next(v for v in self.variants if v["name"] == best[2])
+                extra = (f"; flicker excess {fmt(self.metric_stat(bv, 'flicker_excess'))}, lag "
+                         f"{fmt(self.metric_stat(bv, 'temporal_lag'))}")
             g = (f"<li><b>{esc(label_of(metric))}</b>: {esc(best[2])} is best ({fmt(best[3])}"
-                 f"{' ratio' if metric == 'flicker_ratio' else ''}, {fmt(best[0])} ms/frame)")
+                 f"{' ratio' if metric == 'flicker_ratio' else ''}{extra}, {fmt(best[0])} ms/frame)")
             if cheapest and cheapest[2] != best[2]:
                 g += (f"; the cheapest Pareto-optimal variant is {esc(cheapest[2])} ({fmt(cheapest[3])} at "
                       f"{fmt(cheapest[0])} ms/frame)")
@@ -718,7 +742,7 @@ class Report:
             return head + ("<p class=muted>The variants are frames read from files: they have no render cost "
                            "here, so there is no error against cost (see the table and the per-frame curves).</p>")
         if not avail:
-            return head + "<p class=muted>None of ΔE00, FLIP and flicker ratio was measured in this run.</p>"
+            return head + "<p class=muted>None of ΔE00, FLIP and temporal error was measured in this run.</p>"
         fig, axes = plt.subplots(1, len(avail), figsize=(3.7 * len(avail) + 0.4, 3.6), squeeze=False)
         fronts = {}
         for ax, metric in zip(axes[0], avail):
@@ -740,6 +764,10 @@ class Report:
             by = {p[2]: p for p in pts}
             best = min(pts, key=lambda p: p[1])
             val = fmt(best[3]) + (f" (|ln| = {fmt(best[1])})" if metric == "flicker_ratio" else "")
+            if metric == "temporal_error_mc":
+                bv = next(v for v in s["variants"] if v["name"] == best[2])
+                val += (f" (flicker excess {fmt(self.metric_stat(bv, 'flicker_excess'))}, lag "
+                        f"{fmt(self.metric_stat(bv, 'temporal_lag'))})")
             items.append(f"<li><b>{esc(label_of(metric))}</b>: best {esc(best[2])} at {val}, "
                          f"{fmt(best[0])} GPU ms/frame. Pareto-optimal, cheapest first: "
                          + ", ".join(f"{esc(p[2])} ({fmt(by[p[2]][3])} at {fmt(p[0])} ms)" for p in front) + ".</li>")
@@ -747,11 +775,11 @@ class Report:
         return (head
                 + "<p>Each point is one variant: x is its mean GPU time per frame (all passes, GPU timestamps), y its "
                 "mean error against the reference over all frames. A variant is <i>Pareto-optimal</i> (ringed, joined "
-                "by the dashed line) when no other variant is both cheaper and better. Flicker ratio is ranked by "
-                "<b>|ln(flicker ratio)|</b> of the variant's mean ratio, because its best value is 1, not 0: 0 means "
-                "as stable as the truth, and a variant that changes half as much as the truth (0.5: blurred or "
-                "lagging) is as far off as one that changes twice as much (2: flickering). Labels show the ratio "
-                "itself.</p>"
+                "by the dashed line) when no other variant is both cheaper and better. Temporal stability is ranked "
+                "by the <b>temporal error along the motion</b> (the change that does not match the truth's); the "
+                "at-a-glance list gives the best variant's flicker excess (change beyond the truth's: twinkling) and "
+                "lag (the truth's change it lacks: smooth but wrong) beside it. The flicker ratio stays in the table "
+                "as a diagnostic: it ranks lag as if it were flicker.</p>"
                 f"<figure>{svg}<figcaption>Error against GPU cost. Markers: ● no AA, ■ SSAA, ▲ TAA. The x axis is "
                 "logarithmic when the costs span more than 8×. Single panels: "
                 "<code>figures/pareto_&lt;metric&gt;.svg|pdf</code>.</figcaption></figure>"

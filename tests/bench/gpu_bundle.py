@@ -45,8 +45,9 @@ import tempfile
 SYSTEM = {"libc.so.6", "libm.so.6", "libmvec.so.1", "libpthread.so.0", "libdl.so.2", "librt.so.1",
           "ld-linux-x86-64.so.2", "libresolv.so.2", "libutil.so.1", "libanl.so.1"}
 FALLBACK = {"libstdc++.so.6", "libgcc_s.so.1"}
-# OpenImageIO's format libraries glintlab never calls (it reads and writes EXR, PNG and HDR)
-STUB = re.compile(r"^lib(opencv_|dcm|oflog|ofstd|i2d|avcodec|avformat|avutil|avdevice|avfilter|swscale|"
+# OpenImageIO's format libraries glintlab never calls (it reads and writes EXR, PNG and HDR), and the
+# OpenCV modules beside the three that DIS optical flow runs on (core, imgproc, video: `measure`)
+STUB = re.compile(r"^lib(opencv_(?!(core|imgproc|video)\.so)|dcm|oflog|ofstd|i2d|avcodec|avformat|avutil|avdevice|avfilter|swscale|"
                   r"swresample|postproc|heif|openvdb|raw|raw_r|gif|openjp2|webp|webpdemux|webpmux|sharpyuv|"
                   r"gdal)[^/]*\.so")
 PROGRAMS = ["glintlab", "glintlab_bench"]
