@@ -480,8 +480,9 @@ void combine(const Prepared& t, const Prepared& r, float* out, bool take_max) {
 }
 
 void check_ppd(double ppd, const char* who) {
-  if (!(ppd > 0.0) || !std::isfinite(ppd))
-    throw std::invalid_argument(std::string(who) + ": pixels per degree must be finite and > 0, got " + std::to_string(ppd));
+  if (!(ppd > 0.0) || !(ppd <= kFlipMaxPpd))
+    throw std::invalid_argument(std::string(who) + ": pixels per degree must be in (0, " + std::to_string(int(kFlipMaxPpd)) +
+                                "], got " + std::to_string(ppd));
 }
 
 }  // namespace
@@ -511,6 +512,20 @@ Image xyz_to_linear_srgb(const Image& xyz) {
   }
   return rgb;
 }
+
+namespace {
+// FLIP's count, max(2, ceil(stop - start)), for a span of at most kFlipMaxExposures stops (checked
+// before the conversion to int).
+int exposure_count(double start, double stop) {
+  const double span = std::ceil(stop - start - 1e-5);
+  if (!(span <= kFlipMaxExposures))
+    throw std::invalid_argument("HDR-FLIP: the exposures span " + std::to_string(stop - start) + " stops; at most " +
+                                std::to_string(kFlipMaxExposures) + " exposures are allowed (set --start-exposure, "
+                                "--stop-exposure or --num-exposures)");
+  return std::max(2, int(span));
+}
+
+}  // namespace
 
 HdrFlipExposures hdr_flip_exposures(const Image& ref_xyz, FlipToneMapper tm) {
   // x_max: larger root of (k0 - t k3) x^2 + (k1 - t k4) x + (k2 - t k5) = 0, t = 0.85 (linear when the
@@ -552,7 +567,7 @@ HdrFlipExposures hdr_flip_exposures(const Image& ref_xyz, FlipToneMapper tm) {
   }
   e.start = std::log2(x_max / y_hi);
   e.stop = std::log2(x_max / y_lo);
-  e.count = std::max(2, int(std::ceil(e.stop - e.start - 1e-5)));
+  e.count = exposure_count(e.start, e.stop);
   return e;
 }
 
@@ -575,8 +590,11 @@ HdrFlipExposures resolve_hdr_flip_exposures(const Image& ref_xyz, const HdrFlipO
     bad("start exposure " + num(e.start) + (auto_start ? " (computed from the reference)" : "") +
         " is above stop exposure " + num(e.stop) + (auto_stop ? " (computed from the reference)" : ""));
   }
+  if (o.num_exposures > kFlipMaxExposures)
+    bad("number of exposures must be at most " + std::to_string(kFlipMaxExposures) + ", got " +
+        std::to_string(o.num_exposures));
   if (o.num_exposures > 0) e.count = o.num_exposures;
-  else if (!auto_start || !auto_stop) e.count = std::max(2, int(std::ceil(e.stop - e.start - 1e-5)));
+  else if (!auto_start || !auto_stop) e.count = exposure_count(e.start, e.stop);
   return e;
 }
 

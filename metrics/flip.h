@@ -27,6 +27,10 @@ namespace glintlab::metrics {
 
 // FLIP's default observer (FLIP 2020 sec. 3, and NVIDIA FLIP v1.6's FLIP::Parameters): 0.7 m from a
 // 0.7 m wide monitor that is 3840 px wide.
+// Limits where a number becomes a size or a count: a kernel radius grows with the pixels per degree
+// (about 3 px per 1 ppd), the work with the number of HDR exposures. Beyond them is bad input.
+inline constexpr double kFlipMaxPpd = 1000.0;
+inline constexpr int kFlipMaxExposures = 256;
 inline constexpr double kFlipDefaultMonitorDistance = 0.7;     // m
 inline constexpr double kFlipDefaultMonitorWidth = 0.7;        // m
 inline constexpr double kFlipDefaultMonitorWidthPixels = 3840;  // px

@@ -1,4 +1,10 @@
 #include "core/scene/environment.h"
+#include <cstring>
+#include <cerrno>
+#include <unistd.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include "core/util/io_error.h"
 
 #include "core/util/json_check.h"
 #include "core/scene/sky_preetham.h"
@@ -7,6 +13,11 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -171,11 +182,22 @@ Environment make_procedural_sky(const SkySpec& spec) {
 }
 
 LatLong read_latlong(const std::string& path, const std::string& color_space) {
+  // Only a regular file (a FIFO or /dev/zero would block or never end), opened with the system's
+  // reason on failure.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw IoError(path + ": cannot open environment map: " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw ConfigError(path + ": the environment map is not a regular file");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw IoError(path + ": cannot open environment map: " + std::strerror(errno));
+  ::close(fd);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error(path + ": cannot open environment map: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   const int W = spec.width, H = spec.height, nch = spec.nchannels;
   if (W <= 0 || H <= 0 || nch <= 0) throw std::runtime_error(path + ": empty image");
+  if (int64_t(W) * H > (int64_t(64) << 20) || nch > 1024)
+    throw ConfigError(path + ": the environment map's header claims " + std::to_string(W) + "x" + std::to_string(H) +
+                      " pixels and " + std::to_string(nch) + " channels; allowed: at most 64 Mpix and 1024 channels");
   if (W != 2 * H)
     throw std::runtime_error(path + ": not an equirectangular lat-long map: expected width = 2 x height, got " +
                              std::to_string(W) + "x" + std::to_string(H));

@@ -247,6 +247,9 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                                       std::isnan(o.monitor_width) ? metrics::kFlipDefaultMonitorWidth : o.monitor_width,
                                       std::isnan(o.monitor_width_pixels) ? metrics::kFlipDefaultMonitorWidthPixels
                                                                          : o.monitor_width_pixels);
+  if (!(flip.ppd <= metrics::kFlipMaxPpd))
+    return bad_input((!std::isnan(o.ppd) ? std::string("--ppd") : std::string("--monitor-distance/--monitor-width/--monitor-width-pixels")) +
+                     " give " + num_str(flip.ppd) + " pixels per degree; allowed: up to " + num_str(metrics::kFlipMaxPpd));
   if (!o.tone_mapper.empty()) {
     std::string tm = o.tone_mapper;
     std::transform(tm.begin(), tm.end(), tm.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -324,6 +327,8 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
       }
       flip.exposures = metrics::resolve_hdr_flip_exposures(ref.xyz, flip.hdr_options);
     }
+  } catch (const IoError&) {
+    throw;  // the system's reason: exit 4
   } catch (const std::exception& e) {
     return bad_input(e.what());
   }
@@ -487,8 +492,10 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   c->callback([cmp, reference, num, &exit_code] {
     exit_code = run_guarded(
         [&] {
-          if (num->count() > 0 && cmp->num_exposures < 1) {  // 0 means automatic in CompareOptions
-            std::cerr << "compare: --num-exposures must be an integer >= 1, got " << cmp->num_exposures << "\n";
+          if (num->count() > 0 && (cmp->num_exposures < 1 || cmp->num_exposures > metrics::kFlipMaxExposures)) {
+            // 0 means automatic in CompareOptions
+            std::cerr << "compare: --num-exposures must be an integer >= 1, got " << cmp->num_exposures
+                      << " (at most " << metrics::kFlipMaxExposures << ")\n";
             return int(kExitBadInput);
           }
           const bool named = !reference->empty() || !cmp->tests.empty();

@@ -1,11 +1,12 @@
 // `glintlab list`: what is built in (experiments, paths, scenes, presets,
-// debug outputs, glint models, metrics) and the Vulkan devices.
+// debug outputs, glint models, metrics, motion conventions) and the Vulkan devices.
 #include "core/material/glint_model.h"
 #include "core/material/sand_material.h"
 #include "core/scene/camera_path.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/measure/motion_convention.h"
 #include "experiments/spec/experiment_spec.h"
 #include "metrics/metric_registry.h"
 
@@ -29,6 +30,7 @@ void add_list_command(CLI::App& app, int& exit_code) {
           print("glint models", enum_names(core::kGlintModelNames));
           print("debug outputs", core::SandParams::debug_output_names());
           print("metrics", metrics::metric_names());
+          print("motion conventions (measure --motion-convention)", enum_names(kMotionConventionNames));
           std::cout << "devices:\n";
           for (const auto& d : core::VkContext::list_devices())
             std::cout << "  " << d.index << ": " << d.name << " (" << d.type << ", Vulkan " << d.api_version << ")\n";

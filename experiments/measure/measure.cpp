@@ -39,19 +39,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-// Names that are the run folder's own (files and folders a run writes).
-const std::set<std::string>& reserved_names() {
-  static const std::set<std::string> r = {"reference", "motion", "figures", "frames.csv", "summary.json",
-                                          "report.html", "records.jsonl", "contact_sheet.png"};
-  return r;
-}
-
-// A variant name becomes a folder of previews: letters, digits, '.', '_', '-'; not "." or ".."; at most 100.
+// A test's name becomes a folder of previews: the one rule of variant names (experiment_spec.h).
 void check_name(const std::string& name, const std::string& what) {
-  static const std::regex ok(R"([A-Za-z0-9._-]{1,100})");
-  if (!std::regex_match(name, ok) || name == "." || name == ".." || reserved_names().count(name))
-    throw ConfigError(what + ": the name '" + name + "' is not allowed (1 to 100 of A-Z a-z 0-9 . _ -; not '.', "
-                      "'..' or one of the run folder's own names: reference, motion, figures, frames.csv, ...)");
+  if (const std::string why = variant_name_problem(name); !why.empty()) throw ConfigError(what + ": " + why);
 }
 
 // A name from a sequence's path: the folder's name, or the file pattern's text before its frame field.
@@ -62,10 +52,11 @@ std::string default_name(const SequenceSpec& seq) {
   if (base.empty() || base == ".") base = fs::absolute(p).lexically_normal().filename().string();
   const size_t cut = base.find_first_of("%#");
   if (cut != std::string::npos && cut > 0) base = base.substr(0, cut);
-  base = std::regex_replace(base, std::regex(R"([^A-Za-z0-9._-])"), "_");
+  base = std::regex_replace(base, std::regex(R"([^A-Za-z0-9._+-])"), "_");
   while (!base.empty() && (base.back() == '.' || base.back() == '_' || base.back() == '-')) base.pop_back();
-  if (base.empty() || base == "." || base == ".." || reserved_names().count(base)) base = "test";
-  return base.substr(0, 100);
+  base = base.substr(0, 100);
+  if (!variant_name_problem(base).empty()) base = "test";
+  return base;
 }
 
 // A sequence of vectors or depth, resolved against its files (colour sequences are FrameFiles).

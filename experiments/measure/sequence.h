@@ -18,6 +18,7 @@
 
 #include "core/util/image.h"
 #include "metrics/color/color_manager.h"
+#include "metrics/color/image_io.h"
 #include "metrics/pixel_scan.h"
 
 #include <cstdint>
@@ -29,7 +30,7 @@ namespace glintlab {
 
 // Largest image a header may claim before anything is allocated (64 Mpix:
 // 8K UHD is 33 Mpix). Larger is bad input (exit 2), not an allocation failure.
-constexpr std::int64_t kMaxSequencePixels = std::int64_t(64) << 20;
+constexpr std::int64_t kMaxSequencePixels = metrics::kMaxImagePixels;
 constexpr int kMaxSequenceFrames = 100000;
 
 struct SequenceSpec {

@@ -6,6 +6,8 @@
 #include "metrics/metric_registry.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -70,8 +72,7 @@ std::string relative_to(const std::string& file, const std::string& path) {
 
 std::string variant_name(JsonReader& vr, std::set<std::string>& names) {
   const std::string name = vr.get_string("name");
-  if (name.empty() || name.find_first_of("/\\ ,\"") != std::string::npos)
-    vr.fail("name", "must be non-empty without '/', '\\\\', spaces, commas or quotes (it names files and CSV rows)");
+  if (const std::string why = variant_name_problem(name); !why.empty()) vr.fail("name", why);
   if (!names.insert(name).second) vr.fail("name", "\"" + name + "\" is used by two variants");
   return name;
 }
@@ -260,6 +261,34 @@ ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s
   read_common(r, s);
   r.finish();
   return s;
+}
+
+std::string variant_name_problem(const std::string& name) {
+  static const std::set<std::string> reserved = {"reference", "motion", "figures", "frames.csv", "summary.json",
+                                                 "report.html", "records.jsonl", "contact_sheet.png"};
+  const bool chars_ok = !name.empty() && name.size() <= 100 &&
+                        std::all_of(name.begin(), name.end(), [](char c) {
+                          return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||
+                                 c == '-';
+                        });
+  std::string shown;  // the name as a reader can see it: control characters escaped, at most 60 characters
+  for (char c : name.substr(0, 60)) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned char>(c));
+      shown += buf;
+    } else {
+      shown += c;
+    }
+  }
+  if (name.size() > 60) shown += "...";
+  const std::string allowed = " (it names a folder of the run and a row of frames.csv: 1 to 100 of A-Z a-z 0-9 . _ + -, "
+                              "not starting with '.' or '-', not reference, reference-*, motion, figures or one of the "
+                              "run's files)";
+  if (!chars_ok || name[0] == '.' || name[0] == '-') return "\"" + shown + "\" is not allowed" + allowed;
+  if (reserved.count(name) || name.rfind("reference-", 0) == 0)
+    return "\"" + shown + "\" is one of the run folder's own names" + allowed;
+  return "";
 }
 
 std::vector<std::string> builtin_experiment_names() {

@@ -124,6 +124,12 @@ struct ExperimentSpec {
   static ExperimentSpec read_frames_only(JsonReader& r, ExperimentSpec& s, const std::string& file);
 };
 
+// A variant's name becomes a folder of the run directory and a CSV cell: "" when it may, else what is
+// wrong and what is allowed (1 to 100 of A-Z a-z 0-9 . _ + -, not starting with '.' or '-', and not one
+// of the run folder's own names: reference, reference-*, motion, figures, frames.csv, summary.json,
+// report.html, records.jsonl, contact_sheet.png). The one check of `run` and `measure` alike.
+std::string variant_name_problem(const std::string& name);
+
 // Built-in experiments: every *.json under GLINTLAB_EXPERIMENT_DIR (not paths/), named by its
 // path relative to it without extension ("default", "thesis/fig6-7-hdri-match").
 std::vector<std::string> builtin_experiment_names();

@@ -4,6 +4,11 @@
 #include "core/util/io_error.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -80,7 +85,23 @@ void write_exr_impl(const std::string& path, const Image& img, const std::array<
 
 }  // namespace
 
+void check_image_file(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    const int e = errno;  // a path that names no file is bad input; any other reason is the system's
+    if (e == ENOENT || e == ENOTDIR || e == ENAMETOOLONG || e == ELOOP)
+      throw std::invalid_argument("cannot read image '" + path + "': " + std::strerror(e));
+    throw IoError("cannot read image '" + path + "': " + std::strerror(e));
+  }
+  if (!S_ISREG(st.st_mode))
+    throw std::invalid_argument("'" + path + "' is not a regular file (only regular files are read as images)");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw IoError("cannot read image '" + path + "': " + std::strerror(errno));
+  ::close(fd);
+}
+
 Image read_image(const std::string& path, std::string* colorspace_tag) {
+  check_image_file(path);
   // Values as stored: no premultiplication of unassociated (PNG, TIFF) alpha.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
@@ -92,6 +113,10 @@ Image read_image(const std::string& path, std::string* colorspace_tag) {
   const OIIO::ImageSpec& spec = in->spec();
   const int w = spec.width, h = spec.height, n = spec.nchannels;
   if (w <= 0 || h <= 0 || n <= 0) throw std::runtime_error("cannot read image '" + path + "': empty image");
+  if ((long long)w * h > kMaxImagePixels || n > 1024)
+    throw std::invalid_argument("'" + path + "': its header claims " + std::to_string(w) + "x" + std::to_string(h) +
+                                " pixels and " + std::to_string(n) + " channels; allowed: at most " +
+                                std::to_string(kMaxImagePixels) + " pixels and 1024 channels");
   std::vector<float> raw(static_cast<std::size_t>(w) * h * n);
   if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, raw.data())) {
     std::string e = in->geterror();

@@ -10,9 +10,17 @@
 
 namespace glintlab::metrics {
 
+// The largest image a header may claim before anything is allocated (64 Mpix; 8K UHD is 33 Mpix).
+inline constexpr long long kMaxImagePixels = 64LL << 20;
+
+// Only regular files are read (a FIFO or a device is never opened: it could block for ever):
+// std::invalid_argument for anything else, for a path that names no file and for a header above
+// kMaxImagePixels (bad input), IoError with the system's reason when an existing file cannot be opened.
+void check_image_file(const std::string& path);
+
 // Reads the first subimage as RGBA float (alpha 1 if absent; grey -> R = G = B). If colorspace_tag
 // is given it receives the file's `oiio:ColorSpace` metadata ("" if none). Throws
-// std::runtime_error naming the file.
+// std::runtime_error naming the file (after check_image_file's checks).
 Image read_image(const std::string& path, std::string* colorspace_tag = nullptr);
 
 // Scene-linear float (or half) OpenEXR with the `chromaticities` attribute (Rx Ry Gx Gy Bx By Wx Wy,

@@ -16,7 +16,9 @@
 
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
 #include <unistd.h>
+#include <cstring>
 
 #include "experiments/cli/commands.h"
 #include "experiments/cli/compare.h"
@@ -729,4 +731,55 @@ TEST_F(CompareTest, CommandLineForms) {
   r = run_cli({a, ref, "--ppd", "many"});
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--ppd"), std::string::npos) << r.err;
+}
+
+// Hostile input: numbers that would become huge kernels or counts, files that are not regular files
+// (a read that never ends, an open that blocks), a header that claims a huge image. Each is exit 2
+// with the option or file named, at once.
+TEST_F(CompareTest, HostileInputIsBadInputNotACrashOrAHang) {
+  gm::write_exr(file("a.exr"), pattern(6, 6), kRec709);
+  const auto expect_bad = [&](CompareOptions o, const std::string& needle) {
+    if (o.test.empty()) o.test = file("a.exr");
+    if (o.ref.empty()) o.ref = file("a.exr");
+    EXPECT_EQ(run(o), 2) << needle << ": " << err_.str();
+    EXPECT_NE(err_.str().find(needle), std::string::npos) << err_.str();
+  };
+  CompareOptions o;
+  o.ppd = 1e30;
+  expect_bad(o, "allowed: up to 1000");
+  o = {};
+  o.ppd = 1e8;
+  expect_bad(o, "--ppd");
+  o = {};
+  o.monitor_distance = 1e12;
+  expect_bad(o, "--monitor-distance");
+  o = {};
+  o.num_exposures = 1000000000;
+  expect_bad(o, "at most 256");
+  o = {};
+  o.start_exposure = -1e6;
+  o.stop_exposure = 1e6;
+  expect_bad(o, "at most 256 exposures");
+  o = {};
+  o.test = "/dev/zero";
+  expect_bad(o, "not a regular file");
+  const std::string fifo = file("fifo.exr");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  o = {};
+  o.ref = fifo;
+  expect_bad(o, "not a regular file");
+  // An OpenEXR header whose data window claims 100000 x 100000 pixels (the file holds 6 x 6).
+  {
+    std::ifstream in(file("a.exr"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const int32_t box[4] = {0, 0, 99999, 99999};  // after the attribute's 4-byte size
+    std::memcpy(&bytes[at + key.size() + 4], box, sizeof box);
+    std::ofstream(file("huge.exr"), std::ios::binary) << bytes;
+  }
+  o = {};
+  o.test = file("huge.exr");
+  expect_bad(o, "huge.exr");  // OpenImageIO stops at the missing offset table; nothing is allocated
 }

@@ -526,7 +526,7 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
       {"a folder of several sequences", [&](MeasureOptions& o) { o.tests[0].seq = run_dir().string(); },
        "no numbered image files"},
       {"a range without frames", [&](MeasureOptions& o) { o.first = 100, o.last = 200; }, "none in 100:200"},
-      {"a reserved name", [&](MeasureOptions& o) { o.tests[0].name = "reference"; }, "not allowed"},
+      {"a reserved name", [&](MeasureOptions& o) { o.tests[0].name = "reference"; }, "the run folder's own names"},
       {"a name with a path in it", [&](MeasureOptions& o) { o.tests[0].name = ".."; }, "not allowed"},
       {"two tests of one name", [&](MeasureOptions& o) { o.tests[1].name = "no-aa"; }, "two tests are named"},
       {"an unknown metric", [&](MeasureOptions& o) { o.metrics = {"mse"}; }, "not a metric"},

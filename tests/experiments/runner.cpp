@@ -12,6 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <sys/stat.h>
+
+#include "core/util/json_check.h"
 
 namespace fs = std::filesystem;
 using namespace glintlab;
@@ -197,5 +200,30 @@ TEST(Runner, StaticCameraGivesIdenticalFramesAndNoFlicker) {
     EXPECT_EQ(v["metrics"]["flicker_ratio"]["mean"], 1.0) << v["name"];
     EXPECT_EQ(v["metrics"]["temporal_error"]["mean"], 0.0) << v["name"];
     EXPECT_EQ(v["metrics"]["temporal_error_mc"]["mean"], 0.0) << v["name"];
+  }
+}
+
+// An environment map that is not a regular file (a device that never ends, a FIFO whose open
+// blocks) is bad input before anything renders, not a hang.
+TEST(Runner, EnvironmentMapMustBeARegularFile) {
+  const glintlab::test::TempDir dir_tmp("run_hdri");
+  const fs::path dir = dir_tmp.path();
+  ASSERT_EQ(::mkfifo((dir / "fifo.exr").c_str(), 0600), 0);
+  for (const std::string& hdri : {std::string("/dev/zero"), (dir / "fifo.exr").string()}) {
+    nlohmann::json e = nlohmann::json::parse(kTiny);
+    e["scene"]["sky"] = {{"hdri", hdri}};
+    std::ofstream(dir / "hdri.json") << e.dump();
+    RunOptions opt;
+    opt.report = false;
+    opt.experiment = (dir / "hdri.json").string();
+    opt.out_dir = (dir / "out").string();
+    opt.cache_dir = (dir / "cache").string();
+    std::ostringstream log;
+    try {
+      run_experiment(opt, log);
+      ADD_FAILURE() << hdri << " accepted";
+    } catch (const glintlab::ConfigError& err) {
+      EXPECT_NE(std::string(err.what()).find("not a regular file"), std::string::npos) << err.what();
+    }
   }
 }

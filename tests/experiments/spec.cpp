@@ -149,6 +149,23 @@ TEST(ExperimentSpec, RejectsVariantNameWithSlash) {
   expect_rejected(j, {"variants[1].name"});
 }
 
+// A name becomes a folder of the run and a CSV row: nothing that leaves the run's folder, lands on
+// its own files or splits a row gets through (before anything renders).
+TEST(ExperimentSpec, RejectsVariantNamesThatAreNotPlainFolderNames) {
+  for (const std::string& name : {std::string(".."), std::string("."), std::string("reference"),
+                                  std::string("reference-grains"), std::string("motion"), std::string("figures"),
+                                  std::string("summary.json"), std::string("a\nb"), std::string("a\0b", 3),
+                                  std::string(300, 'x'), std::string("-x"), std::string(".hidden"),
+                                  std::string("a b"), std::string("a,b")}) {
+    json j = minimal();
+    j["variants"] = json::array({{{"name", "ok"}}, {{"name", name}}});
+    expect_rejected(j, {"variants[1].name", "1 to 100 of A-Z a-z 0-9"});
+  }
+  json j = minimal();
+  j["variants"] = json::array({{{"name", "taa-clamp.none_x+2"}}});
+  EXPECT_NO_THROW(ExperimentSpec::from_json(j, kFile));
+}
+
 TEST(ExperimentSpec, RejectsUnknownAaMethod) {
   json j = minimal();
   j["variants"][0]["aa"] = "fxaa";

@@ -208,7 +208,9 @@ TEST(Taa, FlickerRatioRanksSupersamplingOnGlintingOrbitsAtTwoSpeeds) {
     // (the faster orbit) its lag is the larger of the two.
     EXPECT_GT(taa_lag / taa_excess, 5.0 * lag1 / x1) << speed;
     EXPECT_LT(taa_excess, 0.2 * x1) << speed;
-    if (speed > 1.0) EXPECT_GT(taa_lag, taa_excess) << speed;
+    if (speed > 1.0) {
+      EXPECT_GT(taa_lag, taa_excess) << speed;
+    }
   }
 }
 
