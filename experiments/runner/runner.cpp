@@ -20,6 +20,7 @@
 #include "metrics/color/color_manager.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -36,18 +37,23 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
   auto mean = [](const nlohmann::json& stats) -> std::string {
     if (!stats.is_object() || !stats.contains("mean") || stats["mean"].is_null()) return "-";
     std::ostringstream o;
-    o << std::fixed << std::setprecision(stats["mean"].get<double>() < 10 ? 3 : 1) << stats["mean"].get<double>();
+    const double x = stats["mean"].get<double>();
+    if (std::abs(x) < 0.1 && x != 0.0)
+      o << std::setprecision(3) << x;  // three significant digits of small values (0.00868)
+    else
+      o << std::fixed << std::setprecision(x < 10 ? 3 : 1) << x;
     return o.str();
   };
   log << "  " << std::left << std::setw(20) << "variant" << std::right << std::setw(12) << "gpu ms/frame"
-      << std::setw(12) << "deltaE2000" << std::setw(15) << "flicker_ratio" << std::setw(16) << "temporal_error"
-      << "\n";
+      << std::setw(12) << "deltaE2000" << std::setw(15) << "flicker_ratio" << std::setw(19) << "temporal_error_mc"
+      << std::setw(16) << "flicker_excess" << std::setw(14) << "temporal_lag" << "\n";
   for (const auto& v : summary["variants"]) {
     const auto& m = v["metrics"];
     auto metric = [&](const char* n) { return m.contains(n) ? mean(m[n]) : std::string("-"); };
     log << "  " << std::left << std::setw(20) << v["name"].get<std::string>() << std::right << std::setw(12)
         << mean(v["gpu_ms"]) << std::setw(12) << metric("deltaE2000") << std::setw(15) << metric("flicker_ratio")
-        << std::setw(16) << metric("temporal_error") << "\n";
+        << std::setw(19) << metric("temporal_error_mc") << std::setw(16) << metric("flicker_excess") << std::setw(14)
+        << metric("temporal_lag") << "\n";
   }
   for (const auto& r : summary["references"])
     log << "  " << r["name"].get<std::string>() << ": " << r["frames_rendered"] << " rendered (" << mean(r["gpu_ms"])
