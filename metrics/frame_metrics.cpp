@@ -21,9 +21,13 @@ FrameMetrics::FrameMetrics(const ColorManager& cm, std::string working_space, st
                            MetricOptions options)
     : cm_(cm), space_(std::move(working_space)), per_pixel_(std::move(per_pixel)), options_(std::move(options)) {}
 
+Image FrameMetrics::xyz_of(const Image& img) const {
+  return space_ == kXyzD65Space ? img : cm_.to_xyz_d65(img, space_);
+}
+
 FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear) const {
   Reference r;
-  r.xyz = cm_.to_xyz_d65(ref_linear, space_);
+  r.xyz = xyz_of(ref_linear);
   r.metric_xyz = options_.display_view.empty() ? r.xyz : metric_xyz(cm_, ref_linear, space_, options_);
   r.flicker = flicker_reference(r.xyz);
   // The reference side of the per-pixel metrics that have one, converted once for every variant.
@@ -64,7 +68,7 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
   };
   Image test_xyz, test_metric;
   timed("convert", [&] {
-    test_xyz = cm_.to_xyz_d65(test_linear, space_);
+    test_xyz = xyz_of(test_linear);
     test_metric = options_.display_view.empty() ? test_xyz : metric_xyz(cm_, test_linear, space_, options_);
   });
   const bool defect = !scan_pixels(test_linear, 3).clean();

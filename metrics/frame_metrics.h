@@ -61,6 +61,9 @@ class FrameMetrics {
   std::vector<std::string> names() const;
 
  private:
+  // CIE XYZ D65 of an image in the working space (a copy when the working space is XYZ itself, as for
+  // `measure`, which converts every file once when it reads it).
+  Image xyz_of(const Image& img) const;
   const ColorManager& cm_;
   std::string space_;
   std::vector<std::string> per_pixel_;

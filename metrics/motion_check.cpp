@@ -25,20 +25,13 @@ double bilinear_clamped(const std::vector<double>& p, int w, int h, double qx, d
          fx * fy * at(x1, y1);
 }
 
-std::vector<double> pq_plane(const std::vector<float>& y) {
-  std::vector<double> d(y.begin(), y.end());
-  perceptual_luminance_n(d.data(), d.data(), d.size());
-  return d;
-}
-
 }  // namespace
 
-MotionExplained motion_explained(const std::vector<float>& y_prev, const std::vector<float>& y_now, int w, int h,
+MotionExplained motion_explained(const std::vector<double>& p0, const std::vector<double>& p1, int w, int h,
                                  const Image& motion) {
   const size_t n = size_t(w) * size_t(h);
-  if (y_prev.size() != n || y_now.size() != n || motion.width != w || motion.height != h || motion.channels < 4)
+  if (p0.size() != n || p1.size() != n || motion.width != w || motion.height != h || motion.channels < 4)
     throw std::invalid_argument("motion_explained: the luminance planes and the 4-channel motion image differ in size");
-  const std::vector<double> p0 = pq_plane(y_prev), p1 = pq_plane(y_now);
   struct Row {
     double fixed = 0, cand[4] = {0, 0, 0, 0};
     size_t n = 0;

@@ -27,9 +27,10 @@ struct MotionExplained {
   std::size_t pixels = 0;                                // pixels the ratios are over
 };
 
-// y_prev, y_now: linear luminance planes (w·h); motion: the 4-channel image
-// of metrics/flicker.h (xy = v, z <= 0 no surface, w < 0 masked).
-MotionExplained motion_explained(const std::vector<float>& y_prev, const std::vector<float>& y_now, int width,
+// pq_prev, pq_now: the PQ-encoded luminance planes (w·h) of the two frames,
+// as FlickerReference::pq holds them; motion: the 4-channel image of
+// metrics/flicker.h (xy = v, z <= 0 no surface, w < 0 masked).
+MotionExplained motion_explained(const std::vector<double>& pq_prev, const std::vector<double>& pq_now, int width,
                                  int height, const Image& motion);
 
 // The relative margin a mirror image must win by before the vectors are

@@ -133,13 +133,6 @@ std::string vector_layer(MotionConvention c, const FrameHeader& h, const std::st
   return "";
 }
 
-// Y of an XYZ image.
-std::vector<float> luminance(const Image& xyz) {
-  std::vector<float> y(xyz.pixel_count());
-  for (size_t i = 0; i < y.size(); ++i) y[i] = xyz.data[i * size_t(xyz.channels) + 1];
-  return y;
-}
-
 // Everything read for one frame index, decoded ahead of the measurement on another thread.
 struct FrameInput {
   std::optional<ColourFrame> reference;  // images in CIE XYZ D65
@@ -366,7 +359,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     spec.reference.grid = 0;
     spec.reference.frames = o.reference;
     spec.output.exr = false;
-    spec.output.png = true;
+    spec.output.png = o.report;  // previews are for the report: a CI job with --no-report writes none
     spec.output.every = std::max(1, int((p.numbers.size() + 7) / 8));  // at most 8 previews a sequence
     spec.output.contact_sheet = false;
     if (!o.display.empty()) spec.output.display = o.display;
@@ -461,7 +454,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         std::async(std::launch::async, [&p, &cm, start] { return read_inputs(p, size_t(start), cm); });
     std::optional<FrameInput> prev;
     std::optional<Image> prev_motion_forward;
-    std::vector<float> prev_ref_y;
+    std::vector<double> prev_base_pq;
     for (int k = start; k < count; ++k) {
       FrameInput in = next.get();
       if (k + 1 < count)
@@ -488,15 +481,16 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         for (size_t i = 0; i < motion.pixel_count(); ++i)
           motion_bad += !(std::isfinite(motion.data[4 * i]) && std::isfinite(motion.data[4 * i + 1]));
       }
-      // ---- the motion check on the base sequence's own change
-      const std::vector<float> ref_y = luminance(base.image);
+      // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
+      std::optional<metrics::FrameMetrics::Reference> prepared;
+      if (in.reference) prepared = measure.prepare(in.reference->image);
+      std::vector<double> base_pq = prepared ? prepared->flicker.pq : metrics::flicker_reference(base.image).pq;
       metrics::MotionExplained me;
       const double nan = std::nan("");
       me.given = me.negated = me.flip_y = me.flip_x = nan;
-      if (k > 0 && !prev_ref_y.empty()) me = metrics::motion_explained(prev_ref_y, ref_y, p.width, p.height, motion);
-      prev_ref_y = ref_y;
-      std::optional<metrics::FrameMetrics::Reference> prepared;
-      if (in.reference) prepared = measure.prepare(in.reference->image);
+      if (k > 0 && !prev_base_pq.empty())
+        me = metrics::motion_explained(prev_base_pq, base_pq, p.width, p.height, motion);
+      prev_base_pq = std::move(base_pq);
       const bool emit_reference = k >= first_missing;
       if (in.reference && emit_reference) {
         ReferenceRecord rr;
