@@ -427,6 +427,12 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     plan.references.push_back(r);
   }
 
+  try {
+    journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
   log << "measure: " << p.tests.size() << " test sequence(s)" << (p.reference ? " against a reference" : ", no reference")
       << ", frames " << p.numbers.front() << " to " << p.numbers.back() << " at " << p.width << "x" << p.height
       << "; motion " << motion_kind << " (" << motion_source << "); disocclusion: " << disocclusion << "\n";

@@ -88,6 +88,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
     Image motion;
     std::vector<metrics::FrameMetrics::Reference> prepared(m.references.size());
     std::vector<bool> ref_cached(m.references.size(), false);
+    std::vector<metrics::PixelScan> ref_scan(m.references.size());  // references are scanned too
     if (work.motion[kk]) {
       in.samples = core::samples_for(spec.path, k, w, h, {glm::vec2(0.0f)});
       motion = std::move(m.motion.graph->execute(in).images.at(m.motion.output));
@@ -103,9 +104,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       std::optional<Image> img;
       if (const auto& files = m.plan.references[r].files) {  // read, not rendered
         ColourFrame cf = read_colour_frame(*files, kk, m.cm, spec.working_space);
-        if (!cf.scan.clean() && own_frame)
-          m.log << "\nwarning: reference frame " << k << " ('" << files->paths[kk] << "'): " << cf.scan.nan << " NaN, "
-                << cf.scan.infinite << " Inf, " << cf.scan.negative << " negative pixels\n";
+        ref_scan[r] = cf.scan;
         rec.wall_ms = cf.read_ms;
         rec.gpu_ms = std::nan("");
         img = std::move(cf.image);
@@ -135,10 +134,16 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       }
       rec.image = &*img;
       ref_cached[r] = rec.cached;
+      ref_scan[r] = metrics::scan_pixels(*img, 3);
       if (own_frame)
         for (RecordSink* s : sinks) s->reference(rec);
       prepared[r] = m.measure->prepare(*img);
     }
+    for (size_t r = 0; r < m.references.size(); ++r)
+      if (work.reference[r][kk] && own_frame && !ref_scan[r].clean())
+        m.log << "\nwarning: " << m.plan.references[r].name << " frame " << k << ": " << ref_scan[r].nan << " NaN, "
+              << ref_scan[r].infinite << " Inf, " << ref_scan[r].negative
+              << " negative pixels: every metric of the variants measured against it is NaN at that frame\n";
 
     // ---- every variant that has work at frame k
     for (size_t i = 0; i < m.plan.variants.size(); ++i) {
@@ -176,6 +181,15 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         rec.reference_cached = ref_cached[size_t(pv.reference)];
         rec.metrics = m.measure->measure(img, prepared[size_t(pv.reference)], motion, m.trackers[i],
                                          &rec.metric_cost_ms);
+        // A truth with NaN, Inf or negative pixels measures nothing: counted, and every metric NaN.
+        const metrics::PixelScan& rs = ref_scan[size_t(pv.reference)];
+        if (!rs.clean()) {
+          defects_ = true;
+          for (auto& [name, value] : rec.metrics)
+            if (name.size() < 3 || name.compare(name.size() - 3, 3, "_px") != 0) value = std::nan("");
+        }
+        rec.metrics.emplace_back("reference_nonfinite_px", double(rs.nan + rs.infinite));
+        rec.metrics.emplace_back("reference_negative_px", double(rs.negative));
       }
       if (work.emit[i][kk]) {
         if (!rec.scan.clean()) {

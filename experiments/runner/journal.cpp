@@ -7,6 +7,8 @@
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
+#include <set>
+#include <sys/file.h>
 #include <fstream>
 #include <unistd.h>
 #include <utility>
@@ -19,37 +21,93 @@ namespace {
 constexpr const char* kJournal = "records.jsonl";
 }
 
-Journal::Journal(const fs::path& dir, const nlohmann::json& header, bool resume) : path_(dir / kJournal) {
-  std::string kept;
-  if (resume && fs::exists(path_)) {
-    read(path_);
-    if (header_ != header) {
-      std::string what;
-      for (auto it = header.begin(); it != header.end(); ++it)
-        if (!header_.contains(it.key()) || header_[it.key()] != it.value())
-          what += (what.empty() ? "" : ", ") + it.key();
-      throw ConfigError(path_.string() + ": --resume: this folder holds a run with other settings (" + what +
-                        " differ); resume with the same experiment and options, or use a new --out");
+std::string Journal::header_difference(const nlohmann::json& a, const nlohmann::json& b) {
+  std::string what;
+  auto add = [&](const std::string& k) { what += (what.empty() ? "" : ", ") + k; };
+  std::set<std::string> keys;
+  for (auto it = a.begin(); it != a.end(); ++it) keys.insert(it.key());
+  for (auto it = b.begin(); it != b.end(); ++it) keys.insert(it.key());
+  for (const auto& k : keys) {
+    const nlohmann::json va = a.contains(k) ? a[k] : nlohmann::json(), vb = b.contains(k) ? b[k] : nlohmann::json();
+    if (va == vb) continue;
+    if (va.is_object() && vb.is_object()) {  // name the entry: which input file changed
+      std::set<std::string> sub;
+      for (auto it = va.begin(); it != va.end(); ++it) sub.insert(it.key());
+      for (auto it = vb.begin(); it != vb.end(); ++it) sub.insert(it.key());
+      for (const auto& s : sub)
+        if (!va.contains(s) || !vb.contains(s) || va[s] != vb[s]) add(k + "." + s);
+    } else {
+      add(k);
     }
-    // Rewrite without a torn last line, so appends continue a clean file.
-    std::string text = header_.dump() + "\n";
-    for (const auto& r : references_) text += to_json(r).dump() + "\n";
-    for (const auto& [key, r] : frames_) text += to_json(r).dump() + "\n";
-    write_text_atomic(path_, text);
-  } else {
-    header_ = header;
-    write_text_atomic(path_, header_.dump() + "\n");
+  }
+  return what;
+}
+
+void Journal::check_shape(int variants, int frames, int references) const {
+  for (const auto& [key, r] : frames_)
+    if (r.variant < 0 || r.variant >= variants || r.frame < 0 || r.frame >= frames)
+      throw ConfigError(path_.string() + ": a frame record (variant " + std::to_string(r.variant) + ", frame " +
+                        std::to_string(r.frame) + ") is outside this run (" + std::to_string(variants) +
+                        " variants, " + std::to_string(frames) + " frames): the journal is of another run or damaged");
+  for (const auto& r : references_)
+    if (r.reference < 0 || r.reference >= references || r.frame < 0 || r.frame >= frames)
+      throw ConfigError(path_.string() + ": a reference record (reference " + std::to_string(r.reference) +
+                        ", frame " + std::to_string(r.frame) + ") is outside this run: the journal is of another "
+                        "run or damaged");
+}
+
+Journal::Journal(const fs::path& dir, const nlohmann::json& header, bool resume) : path_(dir / kJournal) {
+  // One writer per folder: the lock is held until this Journal is destroyed (or the process dies).
+  const fs::path lock = dir / ".glintlab.lock";
+  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0) throw IoError(lock.string() + ": cannot open (" + std::strerror(errno) + ")");
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int e = errno;
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    if (e == EWOULDBLOCK)
+      throw ConfigError(dir.string() + ": another glintlab run is writing this folder (it holds " + lock.string() +
+                        "); wait for it to finish, or give another --out");
+    throw IoError(lock.string() + ": cannot lock (" + std::strerror(e) + ")");
+  }
+  try {  // a constructor that throws runs no destructor: the lock is released here
+    if (resume && fs::exists(path_)) {
+      read(path_);
+      if (header_ != header)
+        throw ConfigError(path_.string() + ": --resume: this folder holds a run with other settings or inputs (" +
+                          header_difference(header_, header) +
+                          " differ); resume with the same experiment, options and files, or use a new --out");
+      // Rewrite without a torn last line, so appends continue a clean file.
+      std::string text = header_.dump() + "\n";
+      for (const auto& r : references_) text += to_json(r).dump() + "\n";
+      for (const auto& [key, r] : frames_) text += to_json(r).dump() + "\n";
+      write_text_atomic(path_, text);
+    } else {
+      header_ = header;
+      write_text_atomic(path_, header_.dump() + "\n");
+    }
+  } catch (...) {
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw;
   }
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (fd_ < 0) throw IoError(path_.string() + ": cannot open for appending (" + std::strerror(errno) + ")");
+  if (fd_ < 0) {
+    const int e = errno;
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw IoError(path_.string() + ": cannot open for appending (" + std::strerror(e) + ")");
+  }
 }
 
 Journal::~Journal() {
   if (fd_ >= 0) ::close(fd_);
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the folder's lock
 }
 
 Journal::Journal(Journal&& o) noexcept
-    : path_(std::move(o.path_)), fd_(std::exchange(o.fd_, -1)), header_(std::move(o.header_)),
+    : path_(std::move(o.path_)), fd_(std::exchange(o.fd_, -1)), lock_fd_(std::exchange(o.lock_fd_, -1)),
+      header_(std::move(o.header_)),
       frames_(std::move(o.frames_)), references_(std::move(o.references_)),
       reference_keys_(std::move(o.reference_keys_)), dropped_(o.dropped_) {}
 

@@ -28,8 +28,10 @@ class Journal final : public RecordSink {
  public:
   // Opens DIR/records.jsonl. resume = false: a new journal with `header`
   // (an existing one is replaced). resume = true: the existing journal is
-  // loaded; its header must equal `header` (ConfigError naming what differs);
-  // a missing journal starts a new one.
+  // loaded; its header must equal `header` (ConfigError naming what differs,
+  // down to the input file that changed); a missing journal starts a new one.
+  // The folder is locked (flock on DIR/.glintlab.lock) while the Journal
+  // lives: a second run into the same folder is a ConfigError at once.
   Journal(const std::filesystem::path& dir, const nlohmann::json& header, bool resume);
   ~Journal() override;
   Journal(Journal&& o) noexcept;
@@ -52,6 +54,13 @@ class Journal final : public RecordSink {
   // variant and frame).
   void replay(RecordSink& sink) const;
 
+  // Every stored record belongs to a run of this shape (a record of another
+  // run, or a damaged index, is a ConfigError naming the line's record).
+  void check_shape(int variants, int frames, int references) const;
+
+  // The keys (dotted, one level into objects) where two headers differ.
+  static std::string header_difference(const nlohmann::json& a, const nlohmann::json& b);
+
  private:
   Journal() = default;
   void read(const std::filesystem::path& path);
@@ -59,6 +68,7 @@ class Journal final : public RecordSink {
 
   std::filesystem::path path_;
   int fd_ = -1;
+  int lock_fd_ = -1;
   nlohmann::json header_;
   std::map<std::pair<int, int>, FrameRecord> frames_;
   std::vector<ReferenceRecord> references_;

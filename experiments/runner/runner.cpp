@@ -60,9 +60,15 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
         << " ms/frame GPU at " << r["spp"] << " spp), " << r["frames_cached"] << " cached\n";
 }
 
-// The content of every file a frame source of the spec reads (the first spec.frames frames).
-nlohmann::json frame_source_hashes(const ExperimentSpec& spec) {
+// The content of every file the run reads besides the experiment file (whose JSON is in the header):
+// the camera-path file, the HDRI, the OCIO config, the frames of frame sources. A resume or a merge
+// with any of them changed is refused, naming it.
+nlohmann::json run_input_hashes(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
   nlohmann::json out = nlohmann::json::object();
+  if (!spec.path_file.empty()) out["camera_path " + spec.path_file] = file_content_hash(spec.path_file);
+  if (!spec.sky.hdri.empty() && fs::is_regular_file(spec.sky.hdri))
+    out["hdri " + spec.sky.hdri] = file_content_hash(spec.sky.hdri);
+  out["ocio_config"] = file_content_hash(cm.config_path());
   auto add = [&](const std::string& seq, const std::string& what) {
     if (seq.empty()) return;
     const std::vector<int> numbers = first_frame_numbers(seq, spec.frames, what);
@@ -100,8 +106,15 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
 }
 
 struct DefectCount final : RecordSink {
-  size_t frames = 0;
-  void frame(const FrameRecord& r) override { frames += !r.scan.clean(); }
+  size_t frames = 0, reference_frames = 0;
+  void frame(const FrameRecord& r) override {
+    frames += !r.scan.clean();
+    for (const auto& [n, v] : r.metrics)
+      if ((n == "reference_nonfinite_px" || n == "reference_negative_px") && v > 0) {
+        ++reference_frames;
+        break;
+      }
+  }
 };
 
 }  // namespace
@@ -180,6 +193,8 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     log << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
+  // ---- the device: part of what identifies the run (a resume or merge on another device is refused)
+  core::VkContext ctx(core::ContextOptions{opt.device, opt.validation});
   const fs::path out_dir(opt.out_dir);
   fs::create_directories(out_dir);
 
@@ -192,7 +207,8 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
                                  {"content_hash", core::hash_hex(source.dump())},
                                  {"overrides", overrides},
                                  {"shard", {opt.shard_index, opt.shard_count}}};
-  if (const nlohmann::json inputs = frame_source_hashes(spec); !inputs.empty()) header["inputs"] = inputs;
+  header["inputs"] = run_input_hashes(spec, cm);
+  header["device"] = ctx.info().name;
   std::unique_ptr<Journal> journal;
   try {
     journal = std::make_unique<Journal>(out_dir, header, opt.resume);
@@ -205,7 +221,6 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
 
   // ---- the scene, built once; the plan; the work; the renderer
   SceneData data = build_scene(spec, cm);
-  core::VkContext ctx(core::ContextOptions{opt.device, opt.validation});
   log << "device: " << ctx.info().name << " (" << ctx.info().type << ", Vulkan " << ctx.info().api_version << ")\n";
   log << "mesh: " << spec.mesh.type << ", " << data.mesh.indices.size() / 3 << " triangles";
   if (spec.mesh.max_edge_px > 0.0f) {
@@ -217,6 +232,12 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   log << "\n";
   const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name, &log);
   const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);
+  try {
+    journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
   const WorkSchedule work = schedule_work(plan, *journal, begin, end);
   if (opt.shard_count > 1)
     log << "shard " << opt.shard_index + 1 << "/" << opt.shard_count << ": frames " << begin << " to " << end - 1
@@ -245,6 +266,12 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   journal->replay(defects);
   if (defects.frames > 0) {
     log << "error: " << defects.frames << " frame(s) had NaN, Inf or negative pixels (see frames.csv)\n";
+    status = kExitDefect;
+  }
+  if (defects.reference_frames > 0) {
+    log << "error: " << defects.reference_frames << " variant frame(s) were measured against a reference frame with "
+        << "NaN, Inf or negative pixels (reference_nonfinite_px, reference_negative_px in frames.csv): their metrics "
+           "are NaN\n";
     status = kExitDefect;
   }
   if (ctx.validation_enabled() && ctx.validation_message_count() > 0) {
@@ -280,8 +307,8 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
     }
     h["shard"] = first["shard"];
     if (h != first) {
-      log << "error: merge: " << dirs[i] << " is a run of another experiment or with other options than " << dirs[0]
-          << "\n";
+      log << "error: merge: " << dirs[i] << " is a run of another experiment, or with other options, inputs or "
+          << "device than " << dirs[0] << " (" << Journal::header_difference(first, h) << " differ)\n";
       return kExitBadInput;
     }
     if (!seen.insert(k).second) {
@@ -303,9 +330,28 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
     log << "error: merge: " << e.what() << "\n";
     return kExitBadInput;
   }
-  metrics::ColorManager cm;
+  // The shards' own OCIO config (their summaries name it; the journal headers hold its content).
+  std::string ocio_path = metrics::ColorManager::default_config_path();
+  try {
+    std::ifstream in(fs::path(dirs.front()) / "summary.json");
+    ocio_path = nlohmann::json::parse(in).value("ocio_config", ocio_path);
+  } catch (const std::exception&) {
+  }
+  const std::string want = first.contains("inputs") ? first["inputs"].value("ocio_config", "") : "";
+  if (!want.empty() && (!fs::is_regular_file(ocio_path) || file_content_hash(ocio_path) != want)) {
+    log << "error: merge: the shards ran with an OCIO config that is no longer at " << ocio_path
+        << " with the same content; merge where it is\n";
+    return kExitBadInput;
+  }
+  metrics::ColorManager cm(ocio_path);
   const SceneData data = build_scene(spec, cm);
   const RunPlan plan = make_plan(spec, spec.frames, first["command"] == "run" && spec.reference.enabled, cm, data, "");
+  try {
+    for (const Journal& j : journals) j.check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
+  } catch (const ConfigError& e) {
+    log << "error: merge: " << e.what() << "\n";
+    return kExitBadInput;
+  }
   // Every frame of every variant exactly once.
   for (size_t v = 0; v < plan.variants.size(); ++v)
     for (int k = 0; k < plan.frames; ++k) {
@@ -328,13 +374,7 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
   std::vector<const Journal*> js;
   for (const Journal& j : journals) js.push_back(&j);
   ImageWriter images(out_dir, plan, cm);
-  std::string device;
-  try {  // the shards ran on one kind of device; their summaries name it
-    const fs::path first_summary = fs::path(dirs.front()) / "summary.json";
-    std::ifstream in(first_summary);
-    device = nlohmann::json::parse(in).value("device", "");
-  } catch (const std::exception&) {
-  }
+  const std::string device = first.value("device", "");  // one device: the headers are equal
   int report_status = kExitOk;
   const nlohmann::json summary =
       write_run_outputs(out_dir, plan, js, RunInfo{device, cm.config_path(), 1}, images, report, &report_status, log);

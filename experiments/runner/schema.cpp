@@ -41,6 +41,8 @@ const std::map<std::string, std::string>& unit_table() {
       {"motion_explained_flip_y", "ratio (the same with y flipped)"},
       {"motion_explained_flip_x", "ratio (the same with x flipped)"},
       {"motion_nonfinite_px", "pixels (NaN or Inf motion vectors)"},
+      {"reference_nonfinite_px", "pixels of the reference frame (NaN or Inf)"},
+      {"reference_negative_px", "pixels of the reference frame (finite < 0)"},
       {"flicker_valid_px", "pixels"},
       {"flicker_disoccluded_px", "pixels"},
       {"glint_density_test", "glints per 1000 px"},

@@ -17,7 +17,8 @@ namespace glintlab {
 
 namespace {
 
-core::CameraPath load_path(JsonReader& r, const std::string& key, const std::string& file, std::string* name) {
+core::CameraPath load_path(JsonReader& r, const std::string& key, const std::string& file, std::string* name,
+                           std::string* path_file) {
   const nlohmann::json& v = r.raw(key);
   if (v.is_object()) {
     *name = "inline";
@@ -33,7 +34,10 @@ core::CameraPath load_path(JsonReader& r, const std::string& key, const std::str
   for (fs::path base : {fs::path(file).parent_path(), fs::path(GLINTLAB_EXPERIMENT_DIR)}) {
     fs::path p = base / s;
     std::error_code ec;  // an impossible name (too long, a loop) is just not a file here
-    if (fs::is_regular_file(p, ec)) return core::CameraPath::load(p.string());
+    if (fs::is_regular_file(p, ec)) {
+      *path_file = p.string();
+      return core::CameraPath::load(p.string());
+    }
   }
   std::string allowed;
   for (const auto& b : builtins) allowed += (allowed.empty() ? "" : ", ") + b;
@@ -115,7 +119,7 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
   if (auto sky = scene.optional_child("sky")) s.sky = core::SkySpec::from_json(*sky);
   scene.finish();
 
-  s.path = load_path(r, "camera_path", file, &s.path_name);
+  s.path = load_path(r, "camera_path", file, &s.path_name, &s.path_file);
   s.frames = r.get_int("frames", s.path.frames(), 1, s.path.frames());
 
   s.material_json = r.has("material") ? r.raw("material") : nlohmann::json::object({{"preset", "thesis-default"}});

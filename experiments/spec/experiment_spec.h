@@ -106,6 +106,7 @@ struct ExperimentSpec {
   core::MeshSpec mesh;
   core::SkySpec sky;
   std::string path_name;  // built-in name, file, or "inline"
+  std::string path_file;  // the camera path's file, when it is one (its content identifies the run)
   core::CameraPath path;
   nlohmann::json material_json;
   std::vector<VariantSpec> variants;
