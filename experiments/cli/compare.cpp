@@ -473,7 +473,8 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   c->add_option("--map", cmp->map_path, "write the first metric's per-pixel map as a 1-channel EXR (one test image)");
   c->add_flag("--json", cmp->json, "print JSON: {\"metrics\": {name: {\"mean\", \"max\", ...}}, \"input\": ...}");
   c->add_option("--csv", cmp->csv_path, "write a CSV table: one row per test image and metric");
-  c->add_option("--threshold", cmp->threshold, "exit 1 when the mean FLIP error of a test image is above this, in [0, 1]");
+  CLI::Option* threshold =
+      c->add_option("--threshold", cmp->threshold, "exit 1 when the mean FLIP error of a test image is above this, in [0, 1]");
   c->add_option("--ocio-config", cmp->ocio_config, "OCIO config (default: $OCIO, else the shipped config)");
   c->add_option("--itp-nits", cmp->itp_nits, "cd/m^2 of Y = 1 for deltaEITP (default 100)");
   c->add_option("--view", cmp->display_view,
@@ -489,9 +490,13 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   c->add_option("--stop-exposure", cmp->stop_exposure, "HDR-FLIP stop exposure in stops (default: from the reference)");
   CLI::Option* num = c->add_option("--num-exposures", cmp->num_exposures,
                                     "HDR-FLIP number of exposures, >= 1 (default: max(2, ceil(stop - start)))");
-  c->callback([cmp, reference, num, &exit_code] {
+  c->callback([cmp, reference, num, threshold, &exit_code] {
     exit_code = run_guarded(
         [&] {
+          if (threshold->count() > 0 && std::isnan(cmp->threshold)) {  // NaN means "not given" in CompareOptions
+            std::cerr << "compare: --threshold must be a number in [0, 1] (a mean FLIP error), got nan\n";
+            return int(kExitBadInput);
+          }
           if (num->count() > 0 && (cmp->num_exposures < 1 || cmp->num_exposures > metrics::kFlipMaxExposures)) {
             // 0 means automatic in CompareOptions
             std::cerr << "compare: --num-exposures must be an integer >= 1, got " << cmp->num_exposures

@@ -51,8 +51,10 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     return [=]() {
       opt->measure = measure;
       opt->report = !*no_report;
-      if (!resolution->empty() && !parse_pair(*resolution, "x", opt->width, opt->height)) {
-        std::cerr << "error: --resolution: expected WxH (e.g. 320x180), got \"" << *resolution << "\"\n";
+      if (!resolution->empty() && (!parse_pair(*resolution, "x", opt->width, opt->height) || opt->width < 1 ||
+                                   opt->height < 1 || opt->width > 16384 || opt->height > 16384)) {
+        std::cerr << "error: --resolution: expected WxH with each in 1 ... 16384 (e.g. 320x180), got \"" << *resolution
+                  << "\"\n";
         return int(kExitBadInput);
       }
       if (!shard->empty()) {

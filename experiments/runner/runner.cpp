@@ -90,7 +90,10 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
   if (overrides.contains("frames")) spec.frames = std::min(spec.frames, overrides["frames"].get<int>());
   if (overrides.contains("variants")) {
     std::vector<VariantSpec> chosen;
+    std::set<std::string> seen;
     for (const auto& name : overrides["variants"]) {
+      if (!seen.insert(name.get<std::string>()).second)
+        throw ConfigError(file + ": --variants: " + name.dump() + " is given twice (each variant runs once)");
       auto it = std::find_if(spec.variants.begin(), spec.variants.end(),
                              [&](const VariantSpec& v) { return v.name == name.get<std::string>(); });
       if (it == spec.variants.end()) {
