@@ -57,6 +57,15 @@ nlohmann::json stats_json(const metrics::Statistics& s) {
   return {{"mean", num(s.mean())}, {"p95", num(s.p95())}, {"max", num(s.max())}, {"n", s.count()}};
 }
 
+void DefectCount::frame(const FrameRecord& r) {
+  frames += !r.scan.clean();
+  for (const auto& [n, v] : r.metrics)
+    if ((n == "reference_nonfinite_px" || n == "reference_negative_px") && v > 0) {
+      ++reference_frames;
+      break;
+    }
+}
+
 // ---------------------------------------------------------------- CsvWriter
 CsvWriter::CsvWriter(fs::path path, const FrameSchema& schema) : path_(std::move(path)), schema_(schema) {}
 

@@ -97,6 +97,14 @@ class ImageWriter final : public RecordSink {
   std::array<float, 8> chroma_{};  // of the working space, when EXRs are written
 };
 
+// Counts the defects a run exits 1 for: variant frames with NaN/Inf/negative pixels, and variant
+// frames measured against a reference frame that had any (`reference_nonfinite_px`,
+// `reference_negative_px`: their metrics are NaN). `run` and `measure` alike.
+struct DefectCount final : RecordSink {
+  size_t frames = 0, reference_frames = 0;
+  void frame(const FrameRecord& r) override;
+};
+
 // frames.csv, summary.json, the contact sheet and the report of a run (`run`, `merge`, `measure`),
 // all from its journals: every output is a replay of the records. report_status receives the
 // report's exit code (0 when not asked for). Returns the summary document.

@@ -108,17 +108,6 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
   return spec;
 }
 
-struct DefectCount final : RecordSink {
-  size_t frames = 0, reference_frames = 0;
-  void frame(const FrameRecord& r) override {
-    frames += !r.scan.clean();
-    for (const auto& [n, v] : r.metrics)
-      if ((n == "reference_nonfinite_px" || n == "reference_negative_px") && v > 0) {
-        ++reference_frames;
-        break;
-      }
-  }
-};
 
 }  // namespace
 
