@@ -185,25 +185,30 @@ LatLong read_latlong(const std::string& path, const std::string& color_space) {
   // Only a regular file (a FIFO or /dev/zero would block or never end), opened with the system's
   // reason on failure.
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw IoError(path + ": cannot open environment map: " + std::strerror(errno));
+  if (::stat(path.c_str(), &st) != 0) {
+    const int e = errno;  // a path that names no file is bad input; any other reason is the system's
+    if (e == ENOENT || e == ENOTDIR || e == ENAMETOOLONG || e == ELOOP)
+      throw ConfigError(path + ": no such environment map (" + std::strerror(e) + ")");
+    throw IoError(path + ": cannot open environment map: " + std::strerror(e));
+  }
   if (!S_ISREG(st.st_mode)) throw ConfigError(path + ": the environment map is not a regular file");
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw IoError(path + ": cannot open environment map: " + std::strerror(errno));
   ::close(fd);
   auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::runtime_error(path + ": cannot open environment map: " + OIIO::geterror());
+  if (!in) throw ConfigError(path + ": cannot open environment map: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   const int W = spec.width, H = spec.height, nch = spec.nchannels;
-  if (W <= 0 || H <= 0 || nch <= 0) throw std::runtime_error(path + ": empty image");
+  if (W <= 0 || H <= 0 || nch <= 0) throw ConfigError(path + ": empty image");
   if (int64_t(W) * H > (int64_t(64) << 20) || nch > 1024)
     throw ConfigError(path + ": the environment map's header claims " + std::to_string(W) + "x" + std::to_string(H) +
                       " pixels and " + std::to_string(nch) + " channels; allowed: at most 64 Mpix and 1024 channels");
   if (W != 2 * H)
-    throw std::runtime_error(path + ": not an equirectangular lat-long map: expected width = 2 x height, got " +
+    throw ConfigError(path + ": not an equirectangular lat-long map: expected width = 2 x height, got " +
                              std::to_string(W) + "x" + std::to_string(H));
   std::vector<float> all(size_t(W) * size_t(H) * size_t(nch));
   if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, all.data()))
-    throw std::runtime_error(path + ": cannot read pixels: " + in->geterror());
+    throw ConfigError(path + ": cannot read pixels: " + in->geterror());
 
   LatLong m;
   m.width = W;
@@ -213,7 +218,7 @@ LatLong read_latlong(const std::string& path, const std::string& color_space) {
     for (int c = 0; c < 3; ++c) {
       float v = all[p * nch + size_t(nch >= 3 ? c : 0)];
       if (!std::isfinite(v))
-        throw std::runtime_error(path + ": pixel (" + std::to_string(p % W) + ", " + std::to_string(p / W) +
+        throw ConfigError(path + ": pixel (" + std::to_string(p % W) + ", " + std::to_string(p / W) +
                                  ") is NaN or infinite");
       m.rgb[p * 3 + c] = std::max(v, 0.0f);  // negative radiance is not light
     }
@@ -232,7 +237,7 @@ LatLong read_latlong(const std::string& path, const std::string& color_space) {
       else if (near_chromaticities(c, kAP0)) m.color_space = "ACES2065-1";
       else if (near_chromaticities(c, kAP1)) m.color_space = "ACEScg";
       else
-        throw std::runtime_error(path + ": unsupported chromaticities in the file; name the colour space explicitly "
+        throw ConfigError(path + ": unsupported chromaticities in the file; name the colour space explicitly "
                                         "(\"hdri_color_space\")");
     } else if (oiio_cs == "sRGB" || oiio_cs == "srgb") {
       m.color_space = "sRGB";

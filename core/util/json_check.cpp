@@ -1,6 +1,7 @@
 #include "core/util/json_check.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -22,14 +23,33 @@ std::string fmt_num(double v) {
 }
 }  // namespace
 
+void check_json_depth(const nlohmann::json& j, const std::string& file) {
+  std::vector<std::pair<const nlohmann::json*, size_t>> stack = {{&j, 1}};
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    if (!node->is_structured()) continue;
+    if (depth > kMaxJsonDepth)
+      throw ConfigError(file + ": nested more than " + std::to_string(kMaxJsonDepth) +
+                        " levels deep (no glintlab file is)");
+    for (const auto& child : *node) stack.emplace_back(&child, depth + 1);
+  }
+}
+
 nlohmann::json read_json_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw ConfigError(path + ": not a regular file (only regular files are read)");
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot open file");
+  nlohmann::json j;
   try {
-    return nlohmann::json::parse(in, nullptr, true, /*ignore_comments=*/true);
+    j = nlohmann::json::parse(in, nullptr, true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers beyond a double (1e400)
     throw ConfigError(path + ": malformed JSON: " + e.what());
   }
+  check_json_depth(j, path);
+  return j;
 }
 
 JsonReader::JsonReader(const nlohmann::json& j, std::string file, std::string path)

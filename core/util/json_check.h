@@ -25,9 +25,17 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Reads a JSON file; a missing or malformed file is a ConfigError naming the
-// file (and line/column for syntax errors).
+// Reads a JSON file; a missing, non-regular (a FIFO, a device) or malformed
+// file is a ConfigError naming the file (and line/column for syntax errors),
+// and so is one nested deeper than kMaxJsonDepth.
 nlohmann::json read_json_file(const std::string& path);
+
+// Configuration is never deeper than this; deeper input (10^5 nested arrays)
+// is refused before anything walks or prints it recursively.
+constexpr size_t kMaxJsonDepth = 64;
+// ConfigError naming `file` when `j` nests deeper than kMaxJsonDepth (checked
+// without recursion).
+void check_json_depth(const nlohmann::json& j, const std::string& file);
 
 class JsonReader {
  public:

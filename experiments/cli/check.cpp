@@ -131,6 +131,10 @@ int run_check(const std::string& summary_path, const std::string& baseline_path,
   } catch (const std::invalid_argument& e) {
     err << "error: " << summary_path << " vs " << baseline_path << ": " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const nlohmann::json::exception& e) {  // a field of the wrong type
+    err << "error: " << summary_path << " vs " << baseline_path << ": not glintlab summaries of the schema "
+        << "glintlab-summary/1 (" << e.what() << ")\n";
+    return kExitBadInput;
   }
   size_t regressions = 0;
   out << std::left << std::setw(18) << "variant" << std::setw(20) << "metric" << std::right << std::setw(12)

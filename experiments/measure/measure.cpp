@@ -200,7 +200,7 @@ nlohmann::json num_or_null(double x) { return std::isfinite(x) ? nlohmann::json(
 }  // namespace
 
 int measure_sequences(const MeasureOptions& o, std::ostream& log) {
-  metrics::ColorManager cm(o.ocio_config.empty() ? metrics::ColorManager::default_config_path() : o.ocio_config);
+  const metrics::ColorManager cm = load_color_manager(o.ocio_config);
   Plan p;
   ExperimentSpec spec;
   nlohmann::json source;

@@ -178,7 +178,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   if (opt.measure && !spec.reference.enabled)
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";
 
-  metrics::ColorManager cm(opt.ocio_config.empty() ? metrics::ColorManager::default_config_path() : opt.ocio_config);
+  const metrics::ColorManager cm = load_color_manager(opt.ocio_config);
   try {
     check_color_names(spec, cm);  // before anything is written or rendered
   } catch (const ConfigError& e) {

@@ -100,6 +100,7 @@ core::SandParams parse_material(const nlohmann::json& j, const std::string& file
 ExperimentSpec ExperimentSpec::load(const std::string& file) { return from_json(read_json_file(file), file); }
 
 ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::string& file) {
+  check_json_depth(j, file);  // before any message could print a 10^5-deep value
   ExperimentSpec s;
   s.file = file;
   s.source = j;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace glintlab {
 
@@ -153,6 +154,19 @@ SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& c
 core::FrameUniforms frame_uniforms(const ExperimentSpec& spec, const SceneData& scene, int k) {
   return frame_uniforms(spec.path.frame(k, spec.width, spec.height), scene.env, spec.width, spec.height,
                         scene.env_texture.mips_rgba.size(), spec.mesh.motion);
+}
+
+metrics::ColorManager load_color_manager(const std::string& ocio_config) {
+  const std::string path = ocio_config.empty() ? metrics::ColorManager::default_config_path() : ocio_config;
+  const char* env = std::getenv("OCIO");
+  const std::string what = !ocio_config.empty()        ? "--ocio-config " + path
+                           : env && *env                ? "$OCIO=" + path
+                                                        : "the shipped OCIO config " + path;
+  try {
+    return metrics::ColorManager(path);
+  } catch (const std::runtime_error& e) {
+    throw ConfigError(what + ": not a usable OCIO config (" + e.what() + ")");
+  }
 }
 
 }  // namespace glintlab

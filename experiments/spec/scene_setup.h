@@ -42,6 +42,10 @@ struct SceneData {
 };
 SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& cm);
 
+// The OCIO config of a run: `ocio_config` (--ocio-config) if given, else $OCIO, else the shipped one.
+// One that is missing or does not load is bad input (ConfigError naming the option and the file).
+metrics::ColorManager load_color_manager(const std::string& ocio_config);
+
 // The camera positions an adaptive grid ("max_edge_px") serves: every frame of the path, at the
 // spec's resolution, in the mesh's object space. Empty when the grid does not adapt.
 std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec);

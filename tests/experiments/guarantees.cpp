@@ -2,7 +2,9 @@
 // resume or merge only of provably the same run (the content of every input file, the OCIO config
 // and the device in the journal's header), journal records checked against the run, and a truth with
 // NaN/Inf/negative pixels counted and never measured against.
+#include "experiments/cli/check.h"
 #include "experiments/runner/journal.h"
+#include "experiments/spec/experiment_spec.h"
 #include "experiments/runner/runner.h"
 #include "metrics/color/image_io.h"
 
@@ -15,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 using namespace glintlab;
@@ -158,4 +161,52 @@ TEST(Guarantees, ANonFiniteTruthIsCountedNotHidden) {
   const auto& m = s["variants"][0]["metrics"];
   EXPECT_GT(m["reference_nonfinite_px"]["max"].get<double>(), 0.0) << m.dump();
   EXPECT_TRUE(m["deltaE2000"]["mean"].is_null()) << m.dump();
+}
+
+// Bad input is exit 2 (a ConfigError), never "a bug": a JSON file nested 10^5 deep (refused before
+// any message prints it), an experiment file that is a FIFO, a missing or broken OCIO config, a
+// missing or NaN-holding HDRI, a `check` file whose fields have the wrong types.
+TEST(Guarantees, BadInputIsAConfigErrorNotABug) {
+  Folder f;
+  {
+    std::string deep = "{\"metrics\": " + std::string(100000, '[') + std::string(100000, ']') + "}";
+    std::ofstream(f.dir / "deep.json") << deep;
+    EXPECT_THROW(read_json_file((f.dir / "deep.json").string()), ConfigError);
+    try {
+      ExperimentSpec::from_json(nlohmann::json::parse(deep), "deep.json");
+      ADD_FAILURE() << "accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("nested more than 64"), std::string::npos) << e.what();
+    }
+  }
+  ASSERT_EQ(::mkfifo((f.dir / "fifo.json").c_str(), 0600), 0);
+  EXPECT_THROW(read_json_file((f.dir / "fifo.json").string()), ConfigError);  // no hang
+
+  std::string log;
+  RunOptions o = f.options("out");
+  o.ocio_config = (f.dir / "no-such.ocio").string();
+  EXPECT_THROW(run(o, &log), ConfigError);
+  std::ofstream(f.dir / "broken.ocio") << "ocio_profile_version: 2.1\nroles: [this is not a config\n";
+  o.ocio_config = (f.dir / "broken.ocio").string();
+  EXPECT_THROW(run(o, &log), ConfigError);
+
+  for (const char* sky : {"missing.exr", "nan.exr"}) {
+    Image nan_sky(32, 16, 4, 1.0f);
+    nan_sky.at(3, 3, 1) = std::nanf("");
+    metrics::write_exr_data((f.dir / "nan.exr").string(), nan_sky);
+    nlohmann::json e = nlohmann::json::parse(kExperiment);
+    e["scene"]["sky"] = {{"hdri", sky}};
+    std::ofstream(f.dir / "sky.json") << e.dump();
+    RunOptions so = f.options("out-sky");
+    so.experiment = (f.dir / "sky.json").string();
+    EXPECT_THROW(run(so, &log), ConfigError) << sky;
+  }
+
+  nlohmann::json summary = {{"schema", "glintlab-summary/1"}, {"experiment", "x"},
+                            {"variants", {{{"name", 5}, {"metrics", {{"flip", {{"mean", "high"}}}}}}}}};
+  std::ofstream(f.dir / "summary.json") << summary.dump();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_check((f.dir / "summary.json").string(), (f.dir / "summary.json").string(), {}, out, err), 2)
+      << err.str();
+  EXPECT_NE(err.str().find("summary.json"), std::string::npos) << err.str();
 }
