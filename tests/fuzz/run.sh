@@ -13,7 +13,7 @@
 # Environment:
 #   GLINTLAB_FUZZ_BUILD_DIR   build folder (default <repo>/build-fuzz); corpora, logs and
 #                             crash inputs go to <build>/fuzz/{corpus,logs,artifacts}/<harness>/
-#   GLINTLAB_FUZZ_HARNESSES   which harnesses (default "experiment compare")
+#   GLINTLAB_FUZZ_HARNESSES   which harnesses (default "experiment compare check journal options")
 #   GLINTLAB_FUZZ_TIMEOUT     seconds one input may take before it is a finding (default 10)
 #   GLINTLAB_FUZZ_JOBS        build parallelism (default: all cores)
 #   GLINTLAB_FUZZ_IGNORE, GLINTLAB_FUZZ_STRICT, GLINTLAB_FUZZ_ORACLES, GLINTLAB_FUZZ_MAX_SIDE,
@@ -29,7 +29,7 @@ if ! [[ "$TOTAL" =~ ^[0-9]+$ ]] || [ "$TOTAL" -lt 1 ]; then
 fi
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 BUILD="${GLINTLAB_FUZZ_BUILD_DIR:-$ROOT/build-fuzz}"
-read -r -a HARNESSES <<<"${GLINTLAB_FUZZ_HARNESSES:-experiment compare}"
+read -r -a HARNESSES <<<"${GLINTLAB_FUZZ_HARNESSES:-experiment compare check journal options}"
 TIMEOUT="${GLINTLAB_FUZZ_TIMEOUT:-10}"
 W="$BUILD/fuzz"
 
@@ -65,6 +65,9 @@ seed_corpus() {  # seed_corpus HARNESS FILE...: copies seeds in (existing corpus
 }
 seed_corpus experiment "$ROOT"/experiments/*.json "$ROOT"/experiments/thesis/*.json "$ROOT"/tests/fuzz/corpus/experiment/*
 seed_corpus compare "$ROOT"/tests/fuzz/corpus/compare/*
+seed_corpus check "$ROOT"/results/baselines/*.json
+seed_corpus journal "$ROOT"/tests/fuzz/corpus/journal/*
+seed_corpus options "$ROOT"/tests/fuzz/corpus/options/*
 
 # ---- sanitizer settings: stop at the first report; leaks count
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=1:abort_on_error=1:symbolize=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"
@@ -86,6 +89,9 @@ for h in "${HARNESSES[@]}"; do
   case "$h" in
     experiment) args+=(-max_len=16384 -dict="$W/experiment.dict") ;;
     compare) args+=(-max_len=8192) ;;
+    check) args+=(-max_len=65536 -dict="$W/experiment.dict") ;;
+    journal) args+=(-max_len=65536 -dict="$W/experiment.dict") ;;
+    options) args+=(-max_len=2048 -dict="$ROOT/tests/fuzz/options.dict" -close_fd_mask=3) ;;
   esac
   mkdir -p "$W/artifacts/$h"
   log="$W/logs/$h.log"
