@@ -298,8 +298,12 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     if (!o.space.empty()) (void)cm->canonical_name(o.space);  // unknown --space: error before reading
     auto load = [&](Input& in, const std::string& path, const std::string& what) {
       std::string tag;
+      int channels = 0;
       in.path = path;
-      const Image img = metrics::read_image(path, &tag);
+      const Image img = metrics::read_image(path, &tag, &channels);
+      if (channels < 3)  // said, never silent: what the file's channels are taken for
+        err << "compare: " << what << " '" << path << "' has " << channels << " channel" << (channels == 1 ? "" : "s")
+            << ": read as grey" << (channels == 2 ? " (the first) and alpha (the second)" : "") << "\n";
       in.scan = metrics::scan_pixels(img, 3);
       in.bad = bad_pixels(img);
       in.xyz = metrics::metric_xyz(*cm, img, metrics::input_space(*cm, o.space, tag, "compare: " + what, path, err), mo);

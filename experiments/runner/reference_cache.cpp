@@ -14,17 +14,21 @@ namespace fs = std::filesystem;
 namespace glintlab {
 
 namespace {
-constexpr char kMagic[8] = {'G', 'L', 'R', 'E', 'F', '0', '0', '1'};
+// 002: the checksum covers the header's size fields too (a swapped width and height passed 001's).
+constexpr char kMagic[8] = {'G', 'L', 'R', 'E', 'F', '0', '0', '2'};
 
 struct Header {
   char magic[8];
   int32_t width, height, channels, reserved;
   char key[32];
-  char checksum[32];  // XXH3-128 hex of the pixel bytes
+  char checksum[32];  // XXH3-128 hex of width, height, channels and the pixel bytes
 };
 
 std::string checksum(const Image& img) {
-  return core::hash_hex(std::string_view(reinterpret_cast<const char*>(img.data.data()), img.data.size() * 4));
+  core::ContentHash h;
+  h.add(int64_t(img.width)).add(int64_t(img.height)).add(int64_t(img.channels));
+  h.add(img.data.data(), img.data.size() * 4);
+  return h.hex();
 }
 }  // namespace
 

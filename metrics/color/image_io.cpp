@@ -100,7 +100,7 @@ void check_image_file(const std::string& path) {
   ::close(fd);
 }
 
-Image read_image(const std::string& path, std::string* colorspace_tag) {
+Image read_image(const std::string& path, std::string* colorspace_tag, int* file_channels) {
   check_image_file(path);
   // Values as stored: no premultiplication of unassociated (PNG, TIFF) alpha.
   OIIO::ImageSpec config;
@@ -123,6 +123,7 @@ Image read_image(const std::string& path, std::string* colorspace_tag) {
     throw std::runtime_error("cannot read image '" + path + "': " + (e.empty() ? "read failed" : e));
   }
   if (colorspace_tag) *colorspace_tag = spec.get_string_attribute("oiio:ColorSpace");
+  if (file_channels) *file_channels = n;
   in->close();
 
   int alpha = spec.alpha_channel;

@@ -21,7 +21,8 @@ void check_image_file(const std::string& path);
 // Reads the first subimage as RGBA float (alpha 1 if absent; grey -> R = G = B). If colorspace_tag
 // is given it receives the file's `oiio:ColorSpace` metadata ("" if none). Throws
 // std::runtime_error naming the file (after check_image_file's checks).
-Image read_image(const std::string& path, std::string* colorspace_tag = nullptr);
+// If file_channels is given it receives the file's channel count (1: grey; 2: grey + alpha).
+Image read_image(const std::string& path, std::string* colorspace_tag = nullptr, int* file_channels = nullptr);
 
 // Scene-linear float (or half) OpenEXR with the `chromaticities` attribute (Rx Ry Gx Gy Bx By Wx Wy,
 // see ColorManager::chromaticities). Channels: 1 -> "Y", 2 -> "Y","A", 3 -> RGB, 4 -> RGBA.

@@ -395,6 +395,10 @@ void main() {
 
   vec3 lin = max(hdr_inverse(max(from_space(result), vec3(0.0))), vec3(0.0));
   if (!finite3(lin)) lin = max(centre_px.rgb, vec3(0.0));
+  // A current sample that is NaN or infinite is a defect of the frame: passed through as it is, so the
+  // frame's scan counts it (the clamps above would turn it into 0 and hide it); the history restarts
+  // from it being non-finite.
+  if (!finite3(centre_px.rgb)) lin = centre_px.rgb;
   out_color = vec4(lin, centre_px.a);
   out_history = vec4(lin, mc.z);
 #if TAA_ANTI_FLICKER

@@ -783,3 +783,16 @@ TEST_F(CompareTest, HostileInputIsBadInputNotACrashOrAHang) {
   o.test = file("huge.exr");
   expect_bad(o, "huge.exr");  // OpenImageIO stops at the missing offset table; nothing is allocated
 }
+
+// A one- or two-channel image is read as grey (and alpha), and compare says so.
+TEST_F(CompareTest, GreyAndAlphaImagesAreSaidToBeRead) {
+  gm::write_exr(file("a.exr"), pattern(6, 6), kRec709);
+  Image grey_alpha(6, 6, 2, 0.5f);
+  gm::write_exr_data(file("ga.exr"), grey_alpha);
+  CompareOptions o;
+  o.test = file("ga.exr");
+  o.ref = file("a.exr");
+  EXPECT_EQ(run(o), 0) << err_.str();
+  EXPECT_NE(err_.str().find("has 2 channels: read as grey (the first) and alpha (the second)"), std::string::npos)
+      << err_.str();
+}

@@ -161,6 +161,8 @@ TEST(Guarantees, ANonFiniteTruthIsCountedNotHidden) {
   const auto& m = s["variants"][0]["metrics"];
   EXPECT_GT(m["reference_nonfinite_px"]["max"].get<double>(), 0.0) << m.dump();
   EXPECT_TRUE(m["deltaE2000"]["mean"].is_null()) << m.dump();
+  // The TAA resolve passes the infinite current samples through instead of clamping them to 0.
+  EXPECT_GT(m["nonfinite_pixels"]["max"].get<double>(), 0.0) << m.dump();
 }
 
 // Bad input is exit 2 (a ConfigError), never "a bug": a JSON file nested 10^5 deep (refused before

@@ -169,6 +169,19 @@ TEST(ReferenceCache, RoundTripIsExactAndTruncationIsDetected) {
   EXPECT_FALSE(cache.load(key, &corrupt).has_value());
   EXPECT_TRUE(corrupt);
   EXPECT_FALSE(fs::exists(cache.path_of(key)));  // removed so it is rebuilt
+  // The header is covered by the checksum: width and height swapped (the same pixel count) is corrupt.
+  cache.store(key, img);
+  {
+    std::fstream f(cache.path_of(key), std::ios::in | std::ios::out | std::ios::binary);
+    int32_t wh[2];
+    f.seekg(8);
+    f.read(reinterpret_cast<char*>(wh), sizeof wh);
+    std::swap(wh[0], wh[1]);
+    f.seekp(8);
+    f.write(reinterpret_cast<const char*>(wh), sizeof wh);
+  }
+  EXPECT_FALSE(cache.load(key, &corrupt).has_value());
+  EXPECT_TRUE(corrupt);
 }
 
 TEST(Runner, StaticCameraGivesIdenticalFramesAndNoFlicker) {
