@@ -23,10 +23,17 @@ Sense sense_of(const std::string& m) {
   return Sense::Lower;
 }
 
+// The mean of metric m of a summary's variant entry; NaN when any level is missing or of another type
+// (a summary is input: nothing here may assume its shape).
 double mean_of(const nlohmann::json& v, const std::string& m) {
-  if (!v.contains("metrics") || !v["metrics"].contains(m)) return std::numeric_limits<double>::quiet_NaN();
-  const auto& x = v["metrics"][m]["mean"];
-  return x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!v.is_object()) return nan;
+  const auto metrics = v.find("metrics");
+  if (metrics == v.end() || !metrics->is_object()) return nan;
+  const auto entry = metrics->find(m);
+  if (entry == metrics->end() || !entry->is_object()) return nan;
+  const auto mean = entry->find("mean");
+  return mean != entry->end() && mean->is_number() ? mean->get<double>() : nan;
 }
 
 void require_summary(const nlohmann::json& j, const char* what) {

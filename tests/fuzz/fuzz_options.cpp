@@ -23,7 +23,9 @@
 #include "tests/fuzz/fuzz_common.h"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
+#include <array>
 #include <cstdlib>
 #include <fstream>
 #include <map>
