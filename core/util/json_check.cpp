@@ -23,6 +23,10 @@ std::string fmt_num(double v) {
 }
 }  // namespace
 
+std::string dump_json(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 void check_json_depth(const nlohmann::json& j, const std::string& file) {
   std::vector<std::pair<const nlohmann::json*, size_t>> stack = {{&j, 1}};
   while (!stack.empty()) {

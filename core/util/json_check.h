@@ -37,6 +37,10 @@ constexpr size_t kMaxJsonDepth = 64;
 // without recursion).
 void check_json_depth(const nlohmann::json& j, const std::string& file);
 
+// j.dump(indent) that never throws for strings that are not UTF-8 (a file name can be any bytes):
+// such bytes are written as U+FFFD. What every file glintlab writes from JSON goes through.
+std::string dump_json(const nlohmann::json& j, int indent = -1);
+
 class JsonReader {
  public:
   // `j` must outlive the reader. `file` names the source for messages,

@@ -14,6 +14,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/io_error.h"
+#include "core/util/json_check.h"
 #include "experiments/cli/exit_codes.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/color/image_io.h"
@@ -419,7 +420,7 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
         j["tests"].push_back(tj);
       }
     }
-    out << j.dump(2) << "\n";
+    out << dump_json(j, 2) << "\n";
   } else {
     for (const TestResult& t : results) {
       if (!single) out << "test '" << t.test->path << "':\n";

@@ -387,7 +387,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
                                  {"command", "measure"},
                                  {"file", ""},
                                  {"source", source},
-                                 {"content_hash", core::hash_hex(source.dump())},
+                                 {"content_hash", core::hash_hex(dump_json(source))},
                                  {"inputs", hashes},
                                  {"ocio_config", file_content_hash(cm.config_path())},
                                  {"overrides", nlohmann::json::object()},

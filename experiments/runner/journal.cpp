@@ -19,7 +19,9 @@ namespace glintlab {
 
 namespace {
 constexpr const char* kJournal = "records.jsonl";
-}
+// A line of the journal (dump_json: a string that is not UTF-8 does not fail the run).
+std::string line_of(const nlohmann::json& j) { return dump_json(j) + "\n"; }
+}  // namespace
 
 std::string Journal::header_difference(const nlohmann::json& a, const nlohmann::json& b) {
   std::string what;
@@ -78,13 +80,13 @@ Journal::Journal(const fs::path& dir, const nlohmann::json& header, bool resume)
                           header_difference(header_, header) +
                           " differ); resume with the same experiment, options and files, or use a new --out");
       // Rewrite without a torn last line, so appends continue a clean file.
-      std::string text = header_.dump() + "\n";
-      for (const auto& r : references_) text += to_json(r).dump() + "\n";
-      for (const auto& [key, r] : frames_) text += to_json(r).dump() + "\n";
+      std::string text = line_of(header_);
+      for (const auto& r : references_) text += line_of(to_json(r));
+      for (const auto& [key, r] : frames_) text += line_of(to_json(r));
       write_text_atomic(path_, text);
     } else {
       header_ = header;
-      write_text_atomic(path_, header_.dump() + "\n");
+      write_text_atomic(path_, line_of(header_));
     }
   } catch (...) {
     ::close(lock_fd_);
@@ -136,7 +138,7 @@ void Journal::read(const fs::path& path) {
     }
     if (first) {
       first = false;
-      if (!j.is_object() || j.value("type", "") != "run")
+      if (!j.is_object() || !j.contains("type") || j["type"] != "run")
         throw ConfigError(path.string() + ": line 1 is not a glintlab run header");
       header_ = j;
       continue;
@@ -157,7 +159,7 @@ void Journal::read(const fs::path& path) {
 }
 
 void Journal::append(const nlohmann::json& line) {
-  const std::string text = line.dump() + "\n";
+  const std::string text = line_of(line);
   size_t done = 0;
   while (done < text.size()) {
     ssize_t n = ::write(fd_, text.data() + done, text.size() - done);

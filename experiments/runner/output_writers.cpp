@@ -2,6 +2,7 @@
 
 #include "core/render/taa_settings.h"
 #include "core/util/atomic_file.h"
+#include "core/util/json_check.h"
 #include "experiments/runner/contact_sheet.h"
 #include "experiments/report/report.h"
 #include "experiments/runner/version.h"
@@ -211,7 +212,7 @@ void SummaryWriter::finish() {
   }
   j["variants"] = vs;
   summary_ = j;
-  write_text_atomic(path_, j.dump(2) + "\n");
+  write_text_atomic(path_, dump_json(j, 2) + "\n");
 }
 
 // frames.csv, summary.json, the contact sheet and the report, all from the journals.

@@ -92,14 +92,16 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
     std::vector<VariantSpec> chosen;
     std::set<std::string> seen;
     for (const auto& name : overrides["variants"]) {
-      if (!seen.insert(name.get<std::string>()).second)
-        throw ConfigError(file + ": --variants: " + name.dump() + " is given twice (each variant runs once)");
+      const std::string n = name.get<std::string>();
+      if (const std::string why = variant_name_problem(n); !why.empty()) throw ConfigError(file + ": --variants: " + why);
+      if (!seen.insert(n).second)
+        throw ConfigError(file + ": --variants: \"" + n + "\" is given twice (each variant runs once)");
       auto it = std::find_if(spec.variants.begin(), spec.variants.end(),
                              [&](const VariantSpec& v) { return v.name == name.get<std::string>(); });
       if (it == spec.variants.end()) {
         std::string all;
         for (const auto& v : spec.variants) all += (all.empty() ? "" : ", ") + v.name;
-        throw ConfigError(file + ": --variants: no variant named " + name.dump() + "; the experiment has " + all);
+        throw ConfigError(file + ": --variants: no variant named \"" + n + "\"; the experiment has " + all);
       }
       chosen.push_back(*it);
     }
@@ -196,7 +198,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
                                  {"command", measure ? "run" : "render"},
                                  {"file", file},
                                  {"source", source},
-                                 {"content_hash", core::hash_hex(source.dump())},
+                                 {"content_hash", core::hash_hex(dump_json(source))},
                                  {"overrides", overrides},
                                  {"shard", {opt.shard_index, opt.shard_count}}};
   header["inputs"] = run_input_hashes(spec, cm);

@@ -782,6 +782,18 @@ TEST_F(CompareTest, HostileInputIsBadInputNotACrashOrAHang) {
   o = {};
   o.test = file("huge.exr");
   expect_bad(o, "huge.exr");  // OpenImageIO stops at the missing offset table; nothing is allocated
+  // A tiled EXR of 20000 x 20000 whose tiles were never written (its offset table is there): the
+  // header's size is refused before 1.6 GB are allocated and zero-filled.
+  {
+    OIIO::ImageSpec spec(20000, 20000, 1, OIIO::TypeDesc::HALF);
+    spec.tile_width = spec.tile_height = 256;
+    auto out = OIIO::ImageOutput::create("exr");
+    ASSERT_TRUE(out && out->open(file("tiles.exr"), spec)) << OIIO::geterror();
+    out->close();
+  }
+  o = {};
+  o.test = file("tiles.exr");
+  expect_bad(o, "20000x20000");
 }
 
 // A one- or two-channel image is read as grey (and alpha), and compare says so.

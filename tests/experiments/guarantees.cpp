@@ -212,3 +212,24 @@ TEST(Guarantees, BadInputIsAConfigErrorNotABug) {
       << err.str();
   EXPECT_NE(err.str().find("summary.json"), std::string::npos) << err.str();
 }
+
+// What the fuzzers found (tests/fuzz/crashes/): a journal whose header's "type" is a number, a
+// variant name in --variants that is not UTF-8 (the journal header could not be written), a summary
+// whose variant has a metric without "mean". Each is bad input or simply not a number, not a crash.
+TEST(Guarantees, FuzzFindingsStayFixed) {
+  const test::TempDir dir("fuzz_findings");
+  std::ofstream(dir / "records.jsonl") << "{\"type\":1,\"name\":\"\"}\n{\"type\":\"frame\"}\n";
+  EXPECT_THROW(Journal::load(dir.path()), ConfigError);
+
+  Folder f;
+  RunOptions o = f.options("out");
+  o.variants = {"no-aa", std::string("\x80\x80", 2)};
+  std::string log;
+  EXPECT_EQ(run(o, &log), 2) << log;
+  EXPECT_NE(log.find("--variants"), std::string::npos) << log;
+
+  const nlohmann::json s = {{"schema", "glintlab-summary/1"},
+                            {"experiment", "x"},
+                            {"variants", {{{"name", "a"}, {"metrics", {{"flip", nlohmann::json::object()}}}}}}};
+  EXPECT_NO_THROW(check_summary(s, s, default_check_tolerances()));
+}

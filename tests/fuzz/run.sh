@@ -91,7 +91,7 @@ for h in "${HARNESSES[@]}"; do
     compare) args+=(-max_len=8192) ;;
     check) args+=(-max_len=65536 -dict="$W/experiment.dict") ;;
     journal) args+=(-max_len=65536 -dict="$W/experiment.dict") ;;
-    options) args+=(-max_len=2048 -dict="$ROOT/tests/fuzz/options.dict" -close_fd_mask=3) ;;
+    options) args+=(-max_len=2048 -dict="$ROOT/tests/fuzz/options.dict" -close_fd_mask=1) ;;
   esac
   mkdir -p "$W/artifacts/$h"
   log="$W/logs/$h.log"
