@@ -34,6 +34,27 @@ metrics::NamedValues values(const nlohmann::json& a) {
   return v;
 }
 
+// An integer field of a journal line: a JSON integer in [lo, hi]. Anything else (a float such as
+// 6.7e32, a negative count) is not converted (no float-to-int conversion of out-of-range values): the
+// line is refused (std::invalid_argument), and the journal reader drops it.
+template <typename T>
+T integer(const nlohmann::json& j, long long lo, long long hi) {
+  bool ok = false;
+  long long v = 0;
+  if (j.is_number_unsigned()) {
+    const auto u = j.get<unsigned long long>();
+    ok = u <= static_cast<unsigned long long>(hi);  // hi > 0: then it fits a long long
+    v = ok ? static_cast<long long>(u) : 0;
+  } else if (j.is_number_integer()) {
+    v = j.get<long long>();
+    ok = true;
+  }
+  if (ok && v >= lo && v <= hi) return static_cast<T>(v);
+  throw std::invalid_argument("journal: " + j.dump() + " is not an integer in [" + std::to_string(lo) + ", " +
+                              std::to_string(hi) + "]");
+}
+constexpr long long kMaxIndex = 1LL << 30, kMaxCount = 1LL << 48;
+
 }  // namespace
 
 nlohmann::json to_json(const FrameRecord& r) {
@@ -62,22 +83,22 @@ nlohmann::json to_json(const ReferenceRecord& r) {
 
 FrameRecord frame_record_from_json(const nlohmann::json& j) {
   FrameRecord r;
-  r.variant = j.at("variant").get<int>();
+  r.variant = integer<int>(j.at("variant"), -kMaxIndex, kMaxIndex);
   r.name = j.at("name").get<std::string>();
-  r.frame = j.at("frame").get<int>();
+  r.frame = integer<int>(j.at("frame"), -kMaxIndex, kMaxIndex);
   r.time_s = number(j.at("time_s"));
   r.sequence_start = j.at("sequence_start").get<bool>();
-  r.spp = j.at("spp").get<int>();
+  r.spp = integer<int>(j.at("spp"), 0, kMaxIndex);
   r.gpu_ms = number(j.at("gpu_ms"));
   for (const auto& p : j.at("passes")) r.passes.push_back({p.at(0).get<std::string>(), number(p.at(1))});
   r.wall_ms = number(j.at("wall_ms"));
   const auto& s = j.at("scan");
-  r.scan.pixels = s.at(0).get<size_t>();
-  r.scan.nan = s.at(1).get<size_t>();
-  r.scan.pos_inf = s.at(2).get<size_t>();
-  r.scan.neg_inf = s.at(3).get<size_t>();
-  r.scan.infinite = s.at(4).get<size_t>();
-  r.scan.negative = s.at(5).get<size_t>();
+  r.scan.pixels = integer<size_t>(s.at(0), 0, kMaxCount);
+  r.scan.nan = integer<size_t>(s.at(1), 0, kMaxCount);
+  r.scan.pos_inf = integer<size_t>(s.at(2), 0, kMaxCount);
+  r.scan.neg_inf = integer<size_t>(s.at(3), 0, kMaxCount);
+  r.scan.infinite = integer<size_t>(s.at(4), 0, kMaxCount);
+  r.scan.negative = integer<size_t>(s.at(5), 0, kMaxCount);
   r.metrics = values(j.at("metrics"));
   r.metric_cost_ms = values(j.at("metric_cost_ms"));
   r.reference_cached = j.at("reference_cached").get<bool>();
@@ -86,9 +107,9 @@ FrameRecord frame_record_from_json(const nlohmann::json& j) {
 
 ReferenceRecord reference_record_from_json(const nlohmann::json& j) {
   ReferenceRecord r;
-  r.reference = j.at("reference").get<int>();
+  r.reference = integer<int>(j.at("reference"), -kMaxIndex, kMaxIndex);
   r.name = j.at("name").get<std::string>();
-  r.frame = j.at("frame").get<int>();
+  r.frame = integer<int>(j.at("frame"), -kMaxIndex, kMaxIndex);
   r.cached = j.at("cached").get<bool>();
   r.rebuilt = j.at("rebuilt").get<bool>();
   r.gpu_ms = number(j.at("gpu_ms"));

@@ -275,6 +275,35 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   return status;
 }
 
+// A journal header as `run` writes it, checked before merge reads its fields (a header is input: a
+// shard index of 6.7e32 must not be converted to int, a "file" that is a number must not throw).
+void check_run_header(const nlohmann::json& h, const std::string& dir) {
+  auto bad = [&](const std::string& what) {
+    throw ConfigError(dir + ": the journal's header is not one `glintlab run` writes (" + what + ")");
+  };
+  auto is_int = [](const nlohmann::json& x, long long lo, long long hi) {
+    return x.is_number_integer() && x.get<long long>() >= lo && x.get<long long>() <= hi;
+  };
+  if (!h.contains("shard") || !h["shard"].is_array() || h["shard"].size() != 2 ||
+      !is_int(h["shard"][1], 1, 1000000) || !is_int(h["shard"][0], 0, h["shard"][1].get<long long>() - 1))
+    bad("\"shard\" must be [k, n] with 0 <= k < n <= 1000000");
+  if (!h.contains("file") || !h["file"].is_string()) bad("\"file\" must be a string");
+  if (!h.contains("source") || !h["source"].is_object()) bad("\"source\" must be an experiment object");
+  if (!h.contains("command") || !h["command"].is_string()) bad("\"command\" must be a string");
+  if (h["command"] == "measure") bad("it is a `measure` folder: measure runs are not sharded");
+  if (!h.contains("overrides") || !h["overrides"].is_object()) bad("\"overrides\" must be an object");
+  const auto& o = h["overrides"];
+  if (o.contains("resolution") && !(o["resolution"].is_array() && o["resolution"].size() == 2 &&
+                                    is_int(o["resolution"][0], 1, 16384) && is_int(o["resolution"][1], 1, 16384)))
+    bad("\"overrides.resolution\" must be [w, h] in 1 ... 16384");
+  if (o.contains("frames") && !is_int(o["frames"], 1, 1000000)) bad("\"overrides.frames\" must be a count");
+  if (o.contains("variants")) {
+    if (!o["variants"].is_array()) bad("\"overrides.variants\" must be an array of names");
+    for (const auto& v : o["variants"])
+      if (!v.is_string()) bad("\"overrides.variants\" must be an array of names");
+  }
+}
+
 int merge_runs(const std::vector<std::string>& dirs, const std::string& out, bool report, std::ostream& log) {
   if (dirs.empty()) {
     log << "error: merge: name the shard folders to join\n";
@@ -282,7 +311,10 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
   }
   std::vector<Journal> journals;
   try {
-    for (const auto& d : dirs) journals.push_back(Journal::load(d));
+    for (const auto& d : dirs) {
+      journals.push_back(Journal::load(d));
+      check_run_header(journals.back().header(), d);
+    }
   } catch (const ConfigError& e) {
     log << "error: merge: " << e.what() << "\n";
     return kExitBadInput;

@@ -220,6 +220,25 @@ TEST(Guarantees, FuzzFindingsStayFixed) {
   const test::TempDir dir("fuzz_findings");
   std::ofstream(dir / "records.jsonl") << "{\"type\":1,\"name\":\"\"}\n{\"type\":\"frame\"}\n";
   EXPECT_THROW(Journal::load(dir.path()), ConfigError);
+  // A frame index of 6.7e32 is not converted to int: the line is dropped, as a torn one is.
+  {
+    FrameRecord r;
+    r.name = "a";
+    nlohmann::json line = to_json(r);
+    line["frame"] = 6.66667e32;
+    std::ofstream(dir / "records.jsonl") << "{\"type\":\"run\"}\n" << line.dump() << "\n";
+    const Journal j = Journal::load(dir.path());
+    EXPECT_EQ(j.frames().size(), 0u);
+    EXPECT_EQ(j.dropped_lines(), 1u);
+  }
+  // A shard header with a shard index of 6.7e32 or a "file" that is a number: merge says what it is.
+  {
+    const test::TempDir shard("fuzz_merge_header");
+    std::ofstream(shard / "records.jsonl") << R"({"type":"run","shard":[6.7e32,2],"file":1})" << "\n";
+    std::ostringstream mlog;
+    EXPECT_EQ(merge_runs({shard.path().string()}, (shard / "out").string(), false, mlog), 2);
+    EXPECT_NE(mlog.str().find("not one `glintlab run` writes"), std::string::npos) << mlog.str();
+  }
 
   Folder f;
   RunOptions o = f.options("out");

@@ -13,7 +13,7 @@
 # Environment:
 #   GLINTLAB_FUZZ_BUILD_DIR   build folder (default <repo>/build-fuzz); corpora, logs and
 #                             crash inputs go to <build>/fuzz/{corpus,logs,artifacts}/<harness>/
-#   GLINTLAB_FUZZ_HARNESSES   which harnesses (default "experiment compare check journal options")
+#   GLINTLAB_FUZZ_HARNESSES   which harnesses (default "experiment compare check journal options merge")
 #   GLINTLAB_FUZZ_TIMEOUT     seconds one input may take before it is a finding (default 10)
 #   GLINTLAB_FUZZ_JOBS        build parallelism (default: all cores)
 #   GLINTLAB_FUZZ_IGNORE, GLINTLAB_FUZZ_STRICT, GLINTLAB_FUZZ_ORACLES, GLINTLAB_FUZZ_MAX_SIDE,
@@ -29,7 +29,7 @@ if ! [[ "$TOTAL" =~ ^[0-9]+$ ]] || [ "$TOTAL" -lt 1 ]; then
 fi
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 BUILD="${GLINTLAB_FUZZ_BUILD_DIR:-$ROOT/build-fuzz}"
-read -r -a HARNESSES <<<"${GLINTLAB_FUZZ_HARNESSES:-experiment compare check journal options}"
+read -r -a HARNESSES <<<"${GLINTLAB_FUZZ_HARNESSES:-experiment compare check journal options merge}"
 TIMEOUT="${GLINTLAB_FUZZ_TIMEOUT:-10}"
 W="$BUILD/fuzz"
 
@@ -68,6 +68,7 @@ seed_corpus compare "$ROOT"/tests/fuzz/corpus/compare/*
 seed_corpus check "$ROOT"/results/baselines/*.json
 seed_corpus journal "$ROOT"/tests/fuzz/corpus/journal/*
 seed_corpus options "$ROOT"/tests/fuzz/corpus/options/*
+seed_corpus merge "$ROOT"/tests/fuzz/corpus/merge/*
 
 # ---- sanitizer settings: stop at the first report; leaks count
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=1:abort_on_error=1:symbolize=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"
@@ -91,6 +92,7 @@ for h in "${HARNESSES[@]}"; do
     compare) args+=(-max_len=8192) ;;
     check) args+=(-max_len=65536 -dict="$W/experiment.dict") ;;
     journal) args+=(-max_len=65536 -dict="$W/experiment.dict") ;;
+    merge) args+=(-max_len=16384 -dict="$W/experiment.dict") ;;
     options) args+=(-max_len=2048 -dict="$ROOT/tests/fuzz/options.dict" -close_fd_mask=1) ;;
   esac
   mkdir -p "$W/artifacts/$h"
