@@ -320,6 +320,14 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
                    : fb                          ? "forward-backward consistency"
                                                  : "off-screen only (no depth, no vectors to the next frame)";
 
+    if (motion_kind == "estimated" && std::min(p.width, p.height) < 16)
+      throw ConfigError("measure: no motion vectors given, and optical flow (OpenCV DIS) needs frames of at least "
+                        "16 pixels on the short side (these are " + std::to_string(p.width) + "x" +
+                        std::to_string(p.height) + "); give the renderer's vectors with --motion or --motion-from");
+    if (motion_kind == "estimated" && std::max(p.width, p.height) < 46)
+      throw ConfigError("measure: no motion vectors given, and optical flow (OpenCV DIS) needs frames of at least "
+                        "46 pixels on the long side (these are " + std::to_string(p.width) + "x" +
+                        std::to_string(p.height) + "); give the renderer's vectors with --motion or --motion-from");
     // ---- every header, before any pixel (the colour sequences' are checked as they are opened)
     if (p.motion) check_headers(*p.motion, &p.width, &p.height);
     if (p.depth) check_headers(*p.depth, &p.width, &p.height);

@@ -502,6 +502,9 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
     const std::string name = frame_name(k);
     metrics::write_exr_data((small / name).string(), Image(48, 27, 4, 0.5f));
   }
+  const fs::path tiny = scratch("tiny");
+  fs::create_directories(tiny);
+  for (int k = 0; k < 8; ++k) metrics::write_exr_data((tiny / frame_name(k)).string(), Image(40, 12, 4, 0.5f));
   const fs::path gap = scratch("gap"), few = scratch("few");
   fs::create_directories(gap);
   fs::create_directories(few);
@@ -530,6 +533,9 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
       {"a name with a path in it", [&](MeasureOptions& o) { o.tests[0].name = ".."; }, "not allowed"},
       {"two tests of one name", [&](MeasureOptions& o) { o.tests[1].name = "no-aa"; }, "two tests are named"},
       {"an unknown metric", [&](MeasureOptions& o) { o.metrics = {"mse"}; }, "not a metric"},
+      {"frames too small for optical flow",
+       [&](MeasureOptions& o) { o.reference = tiny.string(), o.tests = {{"t", tiny.string(), ""}}; },
+       "needs frames of at least 16 pixels on the short side"},
   };
   for (const Case& c : cases) {
     MeasureOptions o = own_options(std::string("bad-") + std::to_string(&c - cases.data()));
