@@ -489,7 +489,11 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
       std::optional<metrics::FrameMetrics::Reference> prepared;
       if (in.reference) prepared = measure.prepare(in.reference->image);
-      std::vector<double> base_pq = prepared ? prepared->flicker.pq : metrics::flicker_reference(base.image).pq;
+      // Without a reference each test is its own: its luminance, PQ and adaptation, once per frame.
+      std::vector<metrics::FlickerReference> own;
+      if (!prepared)
+        for (const auto& t : in.tests) own.push_back(metrics::flicker_reference(t.image));
+      std::vector<double> base_pq = prepared ? prepared->flicker.pq : own[0].pq;
       metrics::MotionExplained me;
       const double nan = std::nan("");
       me.given = me.negated = me.flip_y = me.flip_x = nan;
@@ -533,7 +537,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
           rec.metrics = measure.measure(t.image, *prepared, motion, trackers[i], &rec.metric_cost_ms);
         } else {  // no reference: the test's own flicker
           auto t0 = Clock::now();
-          std::optional<metrics::FlickerFrame> f = trackers[i].push(t.image, metrics::flicker_reference(t.image), motion);
+          std::optional<metrics::FlickerFrame> f = trackers[i].push(t.image, own[i], motion);
           rec.metrics.emplace_back("flicker_contrast", f ? f->flicker_contrast : nan);
           rec.metrics.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
           rec.metrics.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
