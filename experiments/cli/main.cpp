@@ -11,13 +11,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(glintlab::version()));
   app.require_subcommand(1);
   int exit_code = glintlab::kExitOk;
-  glintlab::add_run_commands(app, exit_code);
-  glintlab::add_compare_command(app, exit_code);
-  glintlab::add_measure_command(app, exit_code);
-  glintlab::add_list_command(app, exit_code);
-  glintlab::add_check_command(app, exit_code);
-  glintlab::add_report_command(app, exit_code);
-  glintlab::add_stress_command(app, exit_code);
+  glintlab::add_all_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -124,13 +124,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   CLI::App app{"glintlab"};
   app.require_subcommand(1);
   int exit_code = glintlab::kExitOk;
-  glintlab::add_run_commands(app, exit_code);
-  glintlab::add_compare_command(app, exit_code);
-  glintlab::add_measure_command(app, exit_code);
-  glintlab::add_list_command(app, exit_code);
-  glintlab::add_check_command(app, exit_code);
-  glintlab::add_report_command(app, exit_code);
-  glintlab::add_stress_command(app, exit_code);
+  glintlab::add_all_commands(app, exit_code);
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 parses a reversed vector
   try {
     app.parse(reversed);
