@@ -77,8 +77,7 @@ Source resolve(const std::string& what, const std::string& text, const std::vect
 }
 
 // The frames to measure: the base sequence's numbers within --frames, with no gap.
-std::vector<int> select_numbers(const std::string& what, const std::string& text, int first, int last,
-                                bool range_given) {
+std::vector<int> select_numbers(const std::string& what, const std::string& text, int first, int last) {
   const SequenceSpec seq = parse_sequence(text, what);
   std::vector<int> all;
   for (const auto& f : list_frames(seq, what)) all.push_back(f.number);
@@ -93,7 +92,6 @@ std::vector<int> select_numbers(const std::string& what, const std::string& text
       throw ConfigError(what + ": '" + text + "' has a gap: frame " + std::to_string(out[i - 1] + 1) +
                         (out[i] - out[i - 1] > 2 ? " to " + std::to_string(out[i] - 1) : std::string()) +
                         " missing (flicker needs consecutive frames; measure the parts apart with --frames)");
-  (void)range_given;
   return out;
 }
 
@@ -248,7 +246,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     // ---- the frames: numbers from the reference (or the first test), then every sequence resolved
     const bool range = o.first != INT_MIN || o.last != INT_MAX;
     const std::string base = o.reference.empty() ? o.tests[0].seq : o.reference;
-    p.numbers = select_numbers(o.reference.empty() ? "--test" : "--reference", base, o.first, o.last, range);
+    p.numbers = select_numbers(o.reference.empty() ? "--test" : "--reference", base, o.first, o.last);
     if (p.numbers.size() > size_t(kMaxSequenceFrames))
       throw ConfigError("measure: more than " + std::to_string(kMaxSequenceFrames) + " frames");
     auto colour_source = [&](const std::string& what, const std::string& text, const std::string& space) {
