@@ -14,6 +14,7 @@ namespace glintlab::core {
 namespace {
 
 constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kGlintFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;  // one opaque sample: depth decides alone
 // Accumulated samples: depth, and a stencil that lets one fragment per pixel
 // through the EQUAL shading draw (see Draw).
@@ -41,7 +42,7 @@ VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, VkShader
 enum class Draw { DepthPrepass, Shade, Sky, ShadeOpaque, SkyOpaque };
 
 Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
-                                VkShaderModule fs, Draw draw, bool motion) {
+                                VkShaderModule fs, Draw draw, int color_attachments) {
   const bool sky = draw == Draw::Sky || draw == Draw::SkyOpaque;
   const bool with_vertices = !sky;
   VkPipelineShaderStageCreateInfo stages[] = {stage_info(VK_SHADER_STAGE_VERTEX_BIT, vs),
@@ -78,7 +79,7 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
     ds.front.reference = 0;
     ds.back = ds.front;
   }
-  VkPipelineColorBlendAttachmentState blend[2] = {};
+  VkPipelineColorBlendAttachmentState blend[3] = {};
   // Accumulate weighted samples; one opaque sample (and its sky) overwrites what a farther fragment wrote.
   blend[0].blendEnable = draw == Draw::Shade || draw == Draw::Sky ? VK_TRUE : VK_FALSE;
   blend[0].srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
@@ -90,8 +91,9 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
   blend[0].colorWriteMask = draw == Draw::DepthPrepass ? 0 : 0xf;
   blend[1].blendEnable = VK_FALSE;  // motion: the last sample's value
   blend[1].colorWriteMask = draw == Draw::DepthPrepass ? 0 : 0xf;
+  blend[2] = blend[0];  // the glint layer accumulates as the colour does
   VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = motion ? 2 : 1;
+  cb.attachmentCount = uint32_t(color_attachments);
   cb.pAttachments = blend;
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
   ci.stageCount = draw == Draw::DepthPrepass ? 1 : 2;  // depth only: no fragment shader
@@ -107,21 +109,25 @@ Pipeline make_graphics_pipeline(const VkContext& ctx, VkPipelineLayout layout, V
 // across one render-pass instance per sample; the pass clears them itself in
 // the first instance. The frame graph puts every attachment in its attachment
 // layout before the pass and expects it there after.
-RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, VkFormat depth_format, bool motion) {
+RenderPass make_render_pass(const VkContext& ctx, VkFormat color_format, VkFormat depth_format, bool motion,
+                            bool glint) {
   std::vector<VkAttachmentDescription> att;
   att.push_back(kept_attachment(color_format, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD));
   if (motion)
     att.push_back(kept_attachment(kMotionFormat, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD));
+  if (glint)
+    att.push_back(kept_attachment(kGlintFormat, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD));
   VkAttachmentDescription depth =
       kept_attachment(depth_format, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR);
   if (aspects_of(depth_format) & VK_IMAGE_ASPECT_STENCIL_BIT) depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   att.push_back(depth);
-  VkAttachmentReference color_refs[2] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                         {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
+  VkAttachmentReference color_refs[3] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                         {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                         {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
   VkAttachmentReference depth_ref{uint32_t(att.size() - 1), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   VkSubpassDescription sub{};
   sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  sub.colorAttachmentCount = motion ? 2 : 1;
+  sub.colorAttachmentCount = uint32_t(att.size() - 1);
   sub.pColorAttachments = color_refs;
   sub.pDepthStencilAttachment = &depth_ref;
   // Orders this sample's blending and depth clear after the previous sample's
@@ -153,6 +159,8 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   if (opt_.motion && !ctx.independent_blend())
     throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
                       "colour need");
+  if (opt_.glint && !opt_.motion)
+    throw VulkanError("surface pass: the glint layer is written beside motion vectors only (option motion)");
   // Several samples without motion vectors, not supersampled: each sample is one opaque draw into the
   // pass's own image, which a blended full-screen draw adds to the colour target (see the header).
   sum_opaque_ = !opt_.single_sample && opt_.supersample == 1 && !opt_.motion &&
@@ -162,7 +170,8 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   if (!ctx.format_supports(depth_format_, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
     throw VulkanError(ctx.info().name + " cannot render depth to " +
                       (opaque_ ? "D32_SFLOAT" : "D32_SFLOAT_S8_UINT (depth and the stencil blended samples need)"));
-  render_pass_ = make_render_pass(ctx, opt_.color_format, depth_format_, opt_.motion);
+  render_pass_ = make_render_pass(ctx, opt_.color_format, depth_format_, opt_.motion, opt_.glint);
+  const int attachments = color_attachments();
 
   std::vector<VkDescriptorSetLayoutBinding> bindings = {
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
@@ -175,22 +184,24 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   ShaderCompiler& sc = default_shader_compiler();
   std::vector<std::string> defines = opt_.program.defines;
   defines.push_back(std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0"));
+  defines.push_back(std::string("SURFACE_GLINT=") + (opt_.glint ? "1" : "0"));
   defines.push_back(std::string("COLOR_HALF=") + (opt_.color_format == VK_FORMAT_R16G16B16A16_SFLOAT ? "1" : "0"));
   CompiledShader vs = sc.compile("passes/surface.vert", ShaderStage::Vertex, defines);
   vertex_module_ = make_shader_module(ctx, vs.spirv);
   fragment_defines_ = defines;
   fragment_hash_ = sc.source_hash(opt_.program.fragment, ShaderStage::Fragment, defines);
   depth_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), vertex_module_.get(),
-                                           VK_NULL_HANDLE, Draw::DepthPrepass, opt_.motion);
+                                           VK_NULL_HANDLE, Draw::DepthPrepass, attachments);
   // With the frame's lighting as constants, the shading pipeline waits for the first frame's values.
   if (!opt_.program.frame_lighting_constants) build_surface_pipeline(defines);
   if (opt_.sky) {
-    std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0")};
+    std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0"),
+                                            std::string("SURFACE_GLINT=") + (opt_.glint ? "1" : "0")};
     CompiledShader svs = sc.compile("passes/sky.vert", ShaderStage::Vertex, sky_defines);
     CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment, sky_defines);
     ShaderModule svm = make_shader_module(ctx, svs.spirv), sfm = make_shader_module(ctx, sfs.spirv);
     sky_pipeline_ = make_graphics_pipeline(ctx, layout_.get(), render_pass_.get(), svm.get(), sfm.get(),
-                                           opaque_ ? Draw::SkyOpaque : Draw::Sky, opt_.motion);
+                                           opaque_ ? Draw::SkyOpaque : Draw::Sky, attachments);
   }
 
   frame_ubo_ = Buffer(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -257,6 +268,7 @@ void SurfacePass::declare(PassIO& io) const {
   // The pass clears colour and motion itself, so their old contents are dropped.
   io.write(opt_.color_target, opt_.color_format, TargetUse::ColorAttachment);
   if (opt_.motion) io.write(opt_.motion_target, kMotionFormat, TargetUse::ColorAttachment);
+  if (opt_.glint) io.write(opt_.glint_target, kGlintFormat, TargetUse::ColorAttachment);
   io.write(opt_.depth_target, depth_format_, TargetUse::DepthAttachment);
 }
 
@@ -299,6 +311,7 @@ void SurfacePass::setup(const TargetSet& t) {
   } else {
     views.push_back(t.image(opt_.color_target).view());
     if (opt_.motion) views.push_back(t.image(opt_.motion_target).view());
+    if (opt_.glint) views.push_back(t.image(opt_.glint_target).view());
     views.push_back(t.image(opt_.depth_target).view());
   }
   VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
@@ -336,15 +349,16 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
     }
   }
   frame_ubo_.upload(&in.uniforms, sizeof in.uniforms);
-  VkClearValue clears[3] = {};
-  clears[opt_.motion ? 2 : 1].depthStencil = {1.0f, 0};
+  const int attachments = color_attachments();
+  VkClearValue clears[4] = {};
+  clears[attachments].depthStencil = {1.0f, 0};
   VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   rb.renderPass = render_pass_.get();
   rb.framebuffer = framebuffer_.get();
   const int f = opt_.supersample;
   const uint32_t rw = uint32_t(width_ * f), rh = uint32_t(height_ * f);
   rb.renderArea = {{0, 0}, {rw, rh}};
-  rb.clearValueCount = opt_.motion ? 3 : 2;
+  rb.clearValueCount = uint32_t(attachments + 1);
   rb.pClearValues = clears;
   VkViewport viewport{0, 0, float(rw), float(rh), 0, 1};
   VkRect2D scissor{{0, 0}, {rw, rh}};
@@ -381,14 +395,14 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
                  VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
     vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
     if ((i == 0 || sum_opaque_) && clear_colour) {  // the accumulation starts from zero; motion from "no surface"
-      VkClearAttachment ca[2] = {};
-      ca[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
-      ca[0].colorAttachment = 0;
-      ca[1].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
-      ca[1].colorAttachment = 1;
-      ca[1].clearValue.color = {{0.0f, 0.0f, 0.0f, -1.0f}};
+      VkClearAttachment ca[3] = {};
+      for (int a = 0; a < attachments; ++a) {
+        ca[a].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+        ca[a].colorAttachment = uint32_t(a);
+      }
+      ca[1].clearValue.color = {{0.0f, 0.0f, 0.0f, -1.0f}};  // motion (the glint layer, attachment 2, is 0)
       VkClearRect rect{scissor, 0, 1};
-      vkCmdClearAttachments(cmd, opt_.motion ? 2 : 1, ca, 1, &rect);
+      vkCmdClearAttachments(cmd, uint32_t(attachments), ca, 1, &rect);
     }
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
@@ -458,7 +472,7 @@ void SurfacePass::build_surface_pipeline(const std::vector<std::string>& defines
   CompiledShader fs = default_shader_compiler().compile(opt_.program.fragment, ShaderStage::Fragment, defines);
   ShaderModule fsm = make_shader_module(ctx_, fs.spirv);
   surface_pipeline_ = make_graphics_pipeline(ctx_, layout_.get(), render_pass_.get(), vertex_module_.get(), fsm.get(),
-                                             opaque_ ? Draw::ShadeOpaque : Draw::Shade, opt_.motion);
+                                             opaque_ ? Draw::ShadeOpaque : Draw::Shade, color_attachments());
 }
 
 // ---------------------------------------------------------------- SurfaceRenderer
@@ -467,6 +481,7 @@ SurfaceRenderer::SurfaceRenderer(const VkContext& ctx, const SceneGpu& scene, in
     : graph_(ctx, width, height) {
   std::vector<std::string> readback = {options.color_target};
   if (options.motion) readback.push_back(options.motion_target);
+  if (options.glint) readback.push_back(options.glint_target);
   pass_ = static_cast<SurfacePass*>(&graph_.add(std::make_unique<SurfacePass>(ctx, scene, std::move(options))));
   graph_.build(readback);
 }

@@ -17,6 +17,7 @@
 //    test that passes one fragment per pixel, blended into the target.
 // Then (option `sky`) the environment fills what no surface covers.
 //
+// With option `glint` (and `motion`) it also writes the "glint" target (the glint layer).
 // With option `motion` it also writes the "motion" target (RGBA32F, layout in
 // shaders/common/motion.glsl: motion vector in pixels, distance now, distance
 // in the previous frame) from the last sample's nearest surface. Where the
@@ -62,9 +63,14 @@ struct SurfacePassOptions {
   // Draw only the mesh chunks each sample's view can see (core/render/chunk_culling.h);
   // the image is the same either way, off only to compare.
   bool cull = true;
+  // With motion: also write the "glint" target (RGBA32F, accumulated like the colour): rgb = the
+  // glint term's part of the radiance, a = its share of the luma (passes/sand.frag; shaders without
+  // glints write 0). What the glint-aware TAA options read.
+  bool glint = false;
   std::string color_target = "color";
   std::string motion_target = "motion";
   std::string depth_target = "depth";
+  std::string glint_target = "glint";
 };
 
 class SurfacePass final : public Pass {
@@ -77,6 +83,8 @@ class SurfacePass final : public Pass {
   void record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet& targets) override;
 
   const SurfacePassOptions& options() const { return opt_; }
+  // Colour attachments of the shading draws: colour, then motion and the glint layer where on.
+  int color_attachments() const { return 1 + (opt_.motion ? 1 : 0) + (opt_.glint ? 1 : 0); }
   // Hash of the preprocessed fragment source (part of a reference's cache key).
   const std::string& fragment_source_hash() const { return fragment_hash_; }
   // Triangles the last recorded frame drew per geometry pass, summed over its samples, and the

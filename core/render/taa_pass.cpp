@@ -9,11 +9,11 @@ constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct TaaPush {
   float width, height, alpha, gamma;
-  float history_valid, disocclusion_tolerance, pad0, pad1;
+  float history_valid, disocclusion_tolerance, reactive, glint_alpha;
 };
 static_assert(sizeof(TaaPush) == 32, "TaaPush must match taa.frag");
 
-enum Binding : uint32_t { kColor = 0, kMotion, kHistoryIn, kLumaIn };
+enum Binding : uint32_t { kColor = 0, kMotion, kHistoryIn, kLumaIn, kGlint, kExtraIn };
 }  // namespace
 
 std::vector<std::string> TaaPass::defines(const TaaSettings& s, bool quad_share) {
@@ -25,14 +25,23 @@ std::vector<std::string> TaaPass::defines(const TaaSettings& s, bool quad_share)
           "TAA_FEEDBACK=" + std::to_string(int(s.feedback)),
           "TAA_HDR=" + std::to_string(int(s.hdr)),
           std::string("TAA_ANTI_FLICKER=") + (s.anti_flicker ? "1" : "0"),
+          std::string("TAA_GLINT=") + (s.reads_glints() ? "1" : "0"),
+          std::string("TAA_EXTRA=") + (s.keeps_extra() ? "1" : "0"),
+          std::string("TAA_ACCUMULATE=") + (s.accumulate ? "1" : "0"),
+          std::string("TAA_REACTIVE=") + (s.reactive > 0.0 ? "1" : "0"),
+          std::string("TAA_GLINT_LAYER=") + (s.glint_layer ? "1" : "0"),
+          "TAA_GLINT_CLAMP=" + std::to_string(int(s.glint_clamp)),
+          std::string("TAA_GLINT_LOCK=") + (s.glint_lock ? "1" : "0"),
           std::string("TAA_QUAD_SHARE=") + (quad_share ? "1" : "0")};
 }
 
 TaaPass::TaaPass(const VkContext& ctx, TaaSettings settings, bool share_quads)
     : ctx_(ctx), s_(settings), allow_quad_share_(share_quads) {
   if (!(s_.alpha > 0.0 && s_.alpha <= 1.0)) throw std::invalid_argument("taa: alpha must be in (0, 1]");
+  if (!(s_.glint_alpha > 0.0 && s_.glint_alpha <= 1.0)) throw std::invalid_argument("taa: glint_alpha must be in (0, 1]");
+  if (!(s_.reactive >= 0.0 && s_.reactive <= 1.0)) throw std::invalid_argument("taa: reactive must be in [0, 1]");
   std::vector<VkDescriptorSetLayoutBinding> b;
-  for (uint32_t i = kColor; i <= kLumaIn; ++i)
+  for (uint32_t i = kColor; i <= kExtraIn; ++i)
     b.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   set_layout_ = make_set_layout(ctx, b);
   layout_ = make_pipeline_layout(ctx, set_layout_.get(), sizeof(TaaPush), VK_SHADER_STAGE_FRAGMENT_BIT);
@@ -41,6 +50,7 @@ TaaPass::TaaPass(const VkContext& ctx, TaaSettings settings, bool share_quads)
   // Every pixel's targets are written, so their old contents are not loaded.
   outputs_ = {kFormat, kFormat};                 // taa.color, taa.history
   if (s_.anti_flicker) outputs_.push_back(kFormat);  // taa.luma
+  if (s_.keeps_extra()) outputs_.push_back(kFormat);   // taa.extra
   render_pass_ = make_color_render_pass(ctx, outputs_, VK_ATTACHMENT_LOAD_OP_DONT_CARE);
   // The pipeline waits for setup(): whether quads can share fetches depends on the image size.
   // texelFetch only: the sampler never filters, but combined image samplers need one.
@@ -62,6 +72,11 @@ void TaaPass::declare(PassIO& io) const {
   if (s_.anti_flicker) {
     io.read_previous("taa.luma");
     io.keep("taa.luma", kFormat, TargetUse::ColorAttachment);
+  }
+  if (s_.reads_glints()) io.read("glint");
+  if (s_.keeps_extra()) {
+    io.read_previous("taa.extra");
+    io.keep("taa.extra", kFormat, TargetUse::ColorAttachment);
   }
 }
 
@@ -91,8 +106,12 @@ void TaaPass::setup(const TargetSet& t) {
     sampled(kHistoryIn, t.slot("taa.history", 1 - slot));
     // Without anti_flicker the luma binding is unused; it points at the history (never accessed).
     sampled(kLumaIn, s_.anti_flicker ? t.slot("taa.luma", 1 - slot) : t.slot("taa.history", 1 - slot));
+    // Likewise the glint layer and the second history where no option reads them.
+    sampled(kGlint, s_.reads_glints() ? t.image("glint") : t.slot("taa.history", 1 - slot));
+    sampled(kExtraIn, s_.keeps_extra() ? t.slot("taa.extra", 1 - slot) : t.slot("taa.history", 1 - slot));
     std::vector<VkImageView> views = {t.image("taa.color").view(), t.slot("taa.history", slot).view()};
     if (s_.anti_flicker) views.push_back(t.slot("taa.luma", slot).view());
+    if (s_.keeps_extra()) views.push_back(t.slot("taa.extra", slot).view());
     VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fi.renderPass = render_pass_.get();
     fi.attachmentCount = uint32_t(views.size());
@@ -108,7 +127,8 @@ void TaaPass::setup(const TargetSet& t) {
 
 void TaaPass::record(VkCommandBuffer cmd, const FrameInputs&, const TargetSet& t) {
   TaaPush p{float(t.width()), float(t.height()), float(s_.alpha), float(s_.gamma),
-            t.history_valid("taa.history") ? 1.0f : 0.0f, float(s_.disocclusion_tolerance), 0.0f, 0.0f};
+            t.history_valid("taa.history") ? 1.0f : 0.0f, float(s_.disocclusion_tolerance), float(s_.reactive),
+            float(s_.glint_alpha)};
   const int slot = t.current_slot("taa.history");
   const VkRect2D area{{0, 0}, {uint32_t(t.width()), uint32_t(t.height())}};
   const VkViewport viewport{0, 0, float(t.width()), float(t.height()), 0, 1};

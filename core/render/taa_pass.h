@@ -3,7 +3,9 @@
 // across frames. Reads "color" and "motion" (the surface pass with motion on);
 // keeps "taa.history" (rgb = resolved colour, a = the surface distance at the
 // pixel, for the disocclusion test) and, with anti_flicker, "taa.luma" (the
-// last lumas of the pixel); writes "taa.color" (rgb resolved, a = coverage).
+// last lumas of the pixel) and, with `accumulate` or `glint_layer`, "taa.extra" (rgb = the glint
+// layer's history, a = the frames accumulated at the pixel); with a glint-aware option it reads
+// "glint" (the surface pass's glint layer); writes "taa.color" (rgb resolved, a = coverage).
 // History restarts at camera cuts (the graph drops it), at disocclusions and
 // off-screen reprojections (per pixel), and wherever it is not finite.
 #pragma once

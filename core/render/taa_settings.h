@@ -4,8 +4,10 @@
 // (RenderPasses/Antialiasing/TAA: Halton(2,3) x16 jitter, alpha 0.1, clamp to
 // mean +- 1.0 sigma over 3x3 in YCgCo, Catmull-Rom history, the longest
 // motion vector in 3x3, Karis' alpha' = alpha d / (d + box range) near the
-// box edge, no HDR weighting). One option beyond Falcor, off by default:
-// `dering`, below.
+// box edge, no HDR weighting). Options beyond Falcor, all off by default:
+// `dering`, `anti_flicker`, and the glint-aware ones below (`accumulate`,
+// `reactive`, `glint_layer`, `glint_lock`), which read the glint layer the
+// surface pass writes (core/render/surface_pass.h, option `glint`).
 #pragma once
 
 #include "core/render/sample_schedule.h"
@@ -63,6 +65,14 @@ enum class TaaHdr {
 inline constexpr EnumTable<TaaHdr, 3> kTaaHdrNames{
     {{TaaHdr::None, "none"}, {TaaHdr::InverseLuma, "inverse_luma"}, {TaaHdr::Tonemap, "tonemap"}}};
 
+// How the glint layer's history is rectified (option `glint_layer`).
+enum class TaaGlintClamp {
+  None,    // not at all: the glint layer accumulates along the motion like a clamp-free TAA
+  MinMax,  // to the min/max box of the 3x3 current glint layer (its own neighbourhood, not the colour's)
+};
+inline constexpr EnumTable<TaaGlintClamp, 2> kTaaGlintClampNames{
+    {{TaaGlintClamp::None, "none"}, {TaaGlintClamp::MinMax, "minmax"}}};
+
 struct TaaSettings {
   JitterSequence jitter = JitterSequence::Halton16;
   double alpha = 0.1;  // weight of the current frame, (0, 1]
@@ -89,6 +99,34 @@ struct TaaSettings {
   // Relative distance mismatch above which reprojected history is a
   // disocclusion and the pixel restarts from the current frame.
   double disocclusion_tolerance = 0.05;
+
+  // ---- glint-aware options (passes/taa.frag's header states each mapping)
+  // Accumulation schedule: the current frame's weight is max(alpha', 1/n), n the frames accumulated
+  // at the pixel since the last reset or disocclusion (a per-pixel count kept with the history), so a
+  // static view averages its first 1/alpha frames with equal weights, as supersampling does, instead
+  // of weighting them exponentially (Yang et al. 2009, "Amortized supersampling", and every
+  // progressive path tracer's running mean).
+  bool accumulate = false;
+  // Reactive mask from the material (FSR2's reactive mask, computed here rather than authored): with
+  // r = reactive x the pixel's glint share (the glint term's share of its luma), the history weight
+  // falls to (1 - r) of its value and the rectified history moves toward the unrectified one by r.
+  double reactive = 0.0;
+  // Layer separation: the glint term is resolved apart from the rest. The colour without its glints
+  // goes through the resolve above (its box statistics then see no glints); the glint layer is
+  // reprojected with the same vectors, filter and validity, rectified by `glint_clamp`, blended with
+  // its own weight `glint_alpha` (with `accumulate`: max(glint_alpha, 1/n)) and added back.
+  bool glint_layer = false;
+  double glint_alpha = 0.5;
+  TaaGlintClamp glint_clamp = TaaGlintClamp::None;
+  // Glint locks (after FSR2's locks on thin features): where the current pixel is mostly glint (share
+  // > 1/2) and the reprojected history is at least half as bright (the glint persisted along the
+  // motion), the history is not rectified.
+  bool glint_lock = false;
+
+  // The resolve reads the surface pass's glint layer.
+  bool reads_glints() const { return reactive > 0.0 || glint_layer || glint_lock; }
+  // The resolve keeps a second history target (taa.extra: the glint layer's history, the count n).
+  bool keeps_extra() const { return accumulate || glint_layer; }
 };
 
 }  // namespace glintlab::core

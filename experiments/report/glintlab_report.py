@@ -116,6 +116,9 @@ METRICS = {
     "glint_density_test": ("glint density", "ref",
                            "Pixels brighter than 4× their local 15×15 mean, per 1000 pixels. Compare with the "
                            "reference's density (next column): best is closest to it."),
+    "glint_density_ratio": ("glint density ratio", "one",
+                            "The test's mean glint density over the reference's (means over the frames): 1 keeps "
+                            "the truth's sparkle, below 1 erases glints, above 1 adds them. Best is closest to 1."),
     "glint_density_ref": ("glint density of the reference", "none",
                           "The same count in the reference frames."),
     "glint_hist_emd_oct": ("glint histogram EMD", "min",
@@ -125,12 +128,14 @@ METRICS = {
     "negative_pixels": ("negative pixels", "min", "Pixels with a finite negative value (a defect: should be 0)."),
 }
 TABLE_METRICS = ["deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag", "flicker_ratio",
-                 "flicker_excess_fixed", "temporal_error", "flicker_contrast", "deltaEITP", "psnr",
+                 "glint_density_ratio", "flicker_excess_fixed", "temporal_error", "flicker_contrast", "deltaEITP", "psnr",
                  "pooled_error", "glint_density_test", "glint_density_ref", "glint_hist_emd_oct", "nonfinite_pixels",
                  "negative_pixels"]
 # Temporal stability is ranked by temporal_error_mc (the change that does not match the truth); the
 # flicker ratio is a diagnostic (it ranks lag as flicker and magnitude over agreement).
-PARETO_METRICS = ["deltaE2000", "flip", "temporal_error_mc"]
+# The glint density ratio as |ln ratio|: whether a variant keeps the truth's glints, at its cost.
+PARETO_METRICS = ["deltaE2000", "flip", "temporal_error_mc", "glint_density_ratio"]
+RATIO_METRICS = ("flicker_ratio", "glint_density_ratio")  # plotted and ranked as |ln ratio|
 CURVE_METRICS = ["flicker_ratio", "deltaE2000"]
 AA_MARKERS = {"none": "o", "ssaa": "s", "taa": "^"}
 
@@ -210,6 +215,14 @@ def load_run(run_dir):
     for i, v in enumerate(summary["variants"]):
         if not isinstance(v, dict) or not isinstance(v.get("name"), str):
             raise BadInput(f"{path}: variants[{i}] has no \"name\"")
+    # The glint density ratio, derived here from the two densities' means (a ratio of per-frame values
+    # would divide by frames without a glint in the truth).
+    for v in summary["variants"]:
+        m = v.get("metrics")
+        if isinstance(m, dict) and "glint_density_ratio" not in m:
+            t, r = stat(m.get("glint_density_test")), stat(m.get("glint_density_ref"))
+            if t is not None and r is not None and r > 0:
+                m["glint_density_ratio"] = {"mean": t / r}
     frames = {}  # variant -> list of row dicts (floats or None), ascending frame
     csv_path = os.path.join(run_dir, "frames.csv")
     if os.path.isfile(csv_path):
@@ -334,7 +347,7 @@ def pareto_value(metric, m):
     """The quantity minimised on the Pareto plot's y axis."""
     if m is None:
         return None
-    if metric == "flicker_ratio":
+    if metric in RATIO_METRICS:
         return abs(math.log(m)) if m > 0 else None
     return m
 
@@ -376,12 +389,12 @@ def draw_pareto(ax, summary, metric, colors, markers, annotate):
             px, py = norm(lx, min(nx), max(nx)), y / ymax
             k = sum(1 for qx, qy in placed if abs(qx - px) < 0.3 and abs(qy - py) < 0.08)
             placed.append((px, py))
-            text = name + (f" ({fmt(m)})" if metric == "flicker_ratio" else "")
+            text = name + (f" ({fmt(m)})" if metric in RATIO_METRICS else "")
             ax.annotate(text, (x, y), xytext=(5, 3 - 8.5 * k), textcoords="offset points", fontsize=7,
                         color="black" if opt else "0.35")
     ax.set_xlabel("GPU ms / frame (mean)")
-    if metric == "flicker_ratio":
-        ax.set_ylabel("|ln(flicker ratio)|   (0 = truth)")
+    if metric in RATIO_METRICS:
+        ax.set_ylabel(f"|ln({label_of(metric)})|   (0 = truth)")
         ax.axhline(0, color="0.5", lw=0.8)
     else:
         ax.set_ylabel(f"{label_of(metric)} (mean)")
@@ -763,7 +776,7 @@ class Report:
             pts, front = fronts[metric]
             by = {p[2]: p for p in pts}
             best = min(pts, key=lambda p: p[1])
-            val = fmt(best[3]) + (f" (|ln| = {fmt(best[1])})" if metric == "flicker_ratio" else "")
+            val = fmt(best[3]) + (f" (|ln| = {fmt(best[1])})" if metric in RATIO_METRICS else "")
             if metric == "temporal_error_mc":
                 bv = next(v for v in s["variants"] if v["name"] == best[2])
                 val += (f" (flicker excess {fmt(self.metric_stat(bv, 'flicker_excess'))}, lag "

@@ -24,6 +24,7 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
       break;
     case AaMethod::Taa:
       o.motion = true;
+      o.glint = v.taa.reads_glints();  // the glint layer, only where an option reads it
       r.output = "taa.color";
       r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
       r.graph->add(std::make_unique<core::TaaPass>(ctx, v.taa));

@@ -42,6 +42,7 @@ struct TaaFrame {
   float bright_p = 0.1f;  // pattern 2: share of pixels at C (the others C / 64); 3: the relative spread
   bool set_motion = true;  // false: the true (zero) motion and distances of the static plane
   glm::vec2 motion{0.0f};
+  float distance = 3.0f;  // set_motion: the surface's distance now and last frame (a change is a disocclusion)
 };
 
 struct Config {
@@ -90,6 +91,31 @@ Config with(std::string label, bool local, const std::function<void(core::TaaSet
   c.label = std::move(label);
   c.local = local;
   f(c.s);
+  return c;
+}
+
+// The glint-aware options (core/render/taa_settings.h), each on Falcor's defaults: the glint layer of
+// taa_stress.frag is its pattern-2 bright pixels. Rectified (out <= 2.5 x the 3x3 current maximum)
+// where every history is clamped: the schedule and the layer with its own min/max box; the reactive
+// mask, the locks and the unclamped layer keep unrectified history by design.
+std::vector<Config> glint_configs() {
+  std::vector<Config> c;
+  c.push_back(with("accumulate", true, [](core::TaaSettings& s) { s.accumulate = true; }));
+  c.push_back(with("glint-layer-minmax", true, [](core::TaaSettings& s) {
+    s.glint_layer = true;
+    s.glint_clamp = core::TaaGlintClamp::MinMax;
+    s.dering = true;
+  }));
+  c.push_back(with("glint-layer-none-accumulate", false, [](core::TaaSettings& s) {
+    s.glint_layer = true;
+    s.accumulate = true;
+  }));
+  c.push_back(with("reactive", false, [](core::TaaSettings& s) { s.reactive = 0.5; }));
+  c.push_back(with("glint-lock", false, [](core::TaaSettings& s) { s.glint_lock = true; }));
+  return c;
+}
+std::vector<Config> plus_glint_configs(std::vector<Config> c) {
+  for (Config& g : glint_configs()) c.push_back(std::move(g));
   return c;
 }
 
@@ -197,6 +223,7 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
     o.sky = false;
     o.motion = true;
     o.color_format = spec.color_format;
+    o.glint = cfg.s.reads_glints();
     g.add(std::make_unique<core::SurfacePass>(env.ctx, scene, o));
     g.add(std::make_unique<core::TaaPass>(env.ctx, cfg.s));
     g.build({"taa.color", "color", "motion"});
@@ -210,7 +237,7 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
       light.sun_L = f.C;
       in.uniforms = frame_uniforms(cam, W, H, light);
       in.uniforms.sun_dir = glm::vec4(f.pattern, f.bright_p, float(k + 1), 0.0f);
-      in.uniforms.env_sh[0] = glm::vec4(f.motion, f.set_motion ? 1.0f : 0.0f, 3.0f);
+      in.uniforms.env_sh[0] = glm::vec4(f.motion, f.set_motion ? 1.0f : 0.0f, f.distance);
       in.samples = samples(cam, W, H);
       core::FrameResult r = g.execute(in);
       const Image& out = r.images.at("taa.color");
@@ -327,7 +354,7 @@ void add_taa_cases(std::vector<Case>& cases) {
                    VK_FORMAT_R32G32B32A32_SFLOAT,
                    "frame 0 at 1e30, then 4 frames at 1, no rectification: the history decays as 0.9^k 1e30 (within "
                    "the range of its inputs)"});
-  specs.push_back({"taa.huge-history.every-clamp-and-hdr", false, {minmax, clip, tonemap, inv_luma, closest},
+  specs.push_back({"taa.huge-history.every-clamp-and-hdr", false, plus_glint_configs({minmax, clip, tonemap, inv_luma, closest}),
                    huge_then_normal(1e30f, 3), 32, 18, VK_FORMAT_R32G32B32A32_SFLOAT,
                    "frame 0 at 1e30, then 3 at 1: min/max (rgb), clip (YCoCg), variance with the FSR2 tonemap and with "
                    "Karis' inverse luma and luma feedback, closest-depth velocity without clamp"});
@@ -341,7 +368,7 @@ void add_taa_cases(std::vector<Case>& cases) {
                    {{glm::vec3(3e38f), 0}, {glm::vec3(1.0f), 1}, {glm::vec3(3e38f), 1}, {glm::vec3(1.0f), 1}}, 32, 18,
                    VK_FORMAT_R32G32B32A32_SFLOAT,
                    "frames at 3e38 (fp32's largest values: 9-tap sums and squares overflow) and 1 in turn"});
-  specs.push_back({"taa.huge-current", true, {falcor_config(), simple_config(), variance_rgb_config(), tonemap},
+  specs.push_back({"taa.huge-current", true, plus_glint_configs({falcor_config(), simple_config(), variance_rgb_config(), tonemap}),
                    {{glm::vec3(1.0f), 1}, {glm::vec3(1.0f), 1}, {glm::vec3(1e20f), 2, 0.1f}, {glm::vec3(1.0f), 1},
                     {glm::vec3(1e20f), 2, 0.5f}},
                    32, 18, VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -361,7 +388,7 @@ void add_taa_cases(std::vector<Case>& cases) {
     std::vector<TaaFrame> f;
     const glm::vec2 mv[] = {{0, 0}, {1e6f, -1e6f}, {-1e30f, 5}, {32.5f, 0}, {-32, 0}, {0.5f, 18.5f}, {3, -2}};
     for (const glm::vec2& m : mv) f.push_back({glm::vec3(1.0f), 1, 0.1f, true, m});
-    specs.push_back({"taa.motion-offscreen", true, {simple_config(), catmull_rom_config(), falcor_config()}, f, 32, 18,
+    specs.push_back({"taa.motion-offscreen", true, plus_glint_configs({simple_config(), catmull_rom_config(), falcor_config()}), f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,
                      "every pixel's motion vector (1e6, -1e6), (-1e30, 5), (32.5, 0), (-32, 0), (0.5, 18.5), (3, -2): "
                      "off-screen, at the edges, partly on screen"});
@@ -370,17 +397,29 @@ void add_taa_cases(std::vector<Case>& cases) {
     std::vector<TaaFrame> f;
     const glm::vec2 mv[] = {{0, 0}, {nan, 0}, {inf, 0}, {-inf, nan}, {0, 0}, {nan, nan}, {0.25f, -0.75f}};
     for (const glm::vec2& m : mv) f.push_back({glm::vec3(1.0f), 1, 0.1f, true, m});
-    specs.push_back({"taa.motion-nonfinite", true, {simple_config(), falcor_config(), closest}, f, 32, 18,
+    specs.push_back({"taa.motion-nonfinite", true, plus_glint_configs({simple_config(), falcor_config(), closest}), f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT, "motion vectors NaN, +inf, -inf in the motion target"});
   }
   {
     std::vector<TaaFrame> f;
     const glm::vec2 mv[] = {{0, 0}, {0.5f, 0.5f}, {-0.49999f, 0}, {0.3f, -0.7f}, {31.999f, 17.999f}, {-0.001f, 0.001f}};
     for (const glm::vec2& m : mv) f.push_back({glm::vec3(1.0f), 1, 0.1f, true, m});
-    specs.push_back({"taa.motion-subpixel-and-edges", true, {simple_config(), catmull_rom_config()}, f, 32, 18,
+    specs.push_back({"taa.motion-subpixel-and-edges", true, plus_glint_configs({simple_config(), catmull_rom_config()}), f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,
                      "fractional motion (bilinear and Catmull-Rom history) and motion landing within 1e-3 of the "
                      "image edges"});
+  }
+  {
+    // Every pixel disoccluded at once: the distance the history keeps (last frame's) differs from the
+    // one the current frame reports for its previous position (3 -> 6 and back: beyond the
+    // tolerance), over sparse glints with fractional motion; the history restarts there.
+    std::vector<TaaFrame> f;
+    const float dist[] = {3, 3, 6, 6, 3, 3};
+    for (float d : dist) f.push_back({glm::vec3(64.0f), 2, 0.04f, true, {0.37f, -0.61f}, d});
+    specs.push_back({"taa.disocclusion", true, plus_glint_configs({simple_config(), falcor_config()}), f, 32, 18,
+                     VK_FORMAT_R32G32B32A32_SFLOAT,
+                     "sparse glints (4 % at 64) moving (0.37, -0.61) a frame, every pixel disoccluded twice (the "
+                     "distance kept with the history 3, the current frame's previous distance 6, and back)"});
   }
   specs.push_back({"taa.rgba16f-color", true, {falcor_config(), simple_config()},
                    {{glm::vec3(6e4f), 1}, {glm::vec3(1e6f), 2, 0.1f}, {glm::vec3(1.0f), 1}, {glm::vec3(1e6f), 0}}, 32,
@@ -414,7 +453,7 @@ void add_taa_cases(std::vector<Case>& cases) {
     Config bilinear = with("bilinear", true,
                            [](core::TaaSettings& s) { s.history_filter = core::TaaHistoryFilter::Bilinear; });
     bilinear.floor = true;
-    specs.push_back({"taa.sparse-glints-no-ringing", true, {dflt, ycocg_clip, bilinear}, f, 32, 18,
+    specs.push_back({"taa.sparse-glints-no-ringing", true, plus_glint_configs({dflt, ycocg_clip, bilinear}), f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,
                      "grey sand at 1 with 4 % glints at 64, a new pattern each frame, motion (0.37, -0.61): no output "
                      "darker than the darkest input"});

@@ -12,10 +12,16 @@ layout(location = 0) out vec4 out_color;
 #if SURFACE_MOTION
 layout(location = 1) out vec4 out_motion;
 #endif
+#if SURFACE_GLINT
+layout(location = 2) out vec4 out_glint;  // no material, no glints
+#endif
 
 void main() {
   out_color = vec4(0.0, 0.0, 0.0, sample_jitter_weight.z);
 #if SURFACE_MOTION
   out_motion = surface_motion(v_pix, v_prev_pix, v_eye_offset, v_prev_eye_offset);
+#endif
+#if SURFACE_GLINT
+  out_glint = vec4(0.0);
 #endif
 }

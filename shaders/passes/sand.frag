@@ -41,6 +41,14 @@ layout(location = 0) out vec4 out_color;
 #if SURFACE_MOTION
 layout(location = 1) out vec4 out_motion;  // common/motion.glsl
 #endif
+#ifndef SURFACE_GLINT
+#define SURFACE_GLINT 0
+#endif
+#if SURFACE_GLINT
+// The glint layer (core/render/surface_pass.h, option glint): rgb = the glint term's part of the
+// sample's radiance (sand_glint_radiance), a = its share of the luma, both weighted like the colour.
+layout(location = 2) out vec4 out_glint;
+#endif
 
 void main() {
   vec3 to_eye = frame_camera_pos.xyz - v_x;
@@ -60,9 +68,14 @@ void main() {
   SandLight l = SandLight(frame_sun_dir.xyz, frame_sun_L.rgb, env_irradiance(n), frame_sun_dir.w);
   // Not clamped: every frame is scanned for NaN/Inf/negative values, and a
   // clamp here would hide a defect of the material.
-  vec3 L = sand_shade(sand_params, s, l);
+  SandTerms terms = sand_terms(sand_params, s, l);
+  vec3 L = sand_output(terms);
   float w = sample_jitter_weight.z;
   out_color = vec4(L * w, w);
+#if SURFACE_GLINT
+  vec3 G = sand_glint_radiance(terms);
+  out_glint = vec4(G * w, sand_glint_share(G, terms.L_final) * w);
+#endif
 #if COLOR_HALF
   // An RGBA16F target holds at most 65504: what lies above is written as the
   // largest half (Vulkan leaves the conversion of larger values to the driver:

@@ -15,6 +15,9 @@ layout(location = 0) out vec4 out_color;
 #if SURFACE_MOTION
 layout(location = 1) out vec4 out_motion;  // camera rotation only (common/motion.glsl)
 #endif
+#if SURFACE_GLINT
+layout(location = 2) out vec4 out_glint;  // the sky has no glints
+#endif
 
 void main() {
   float len = length(v_ray);
@@ -24,5 +27,8 @@ void main() {
   out_color = vec4(L * w, 0.0);
 #if SURFACE_MOTION
   out_motion = sky_motion(v_pix, v_prev_pix);
+#endif
+#if SURFACE_GLINT
+  out_glint = vec4(0.0);
 #endif
 }

@@ -14,6 +14,26 @@
 //      the history is rectified against the 3x3 neighbourhood (TAA_CLAMP).
 //   4. out = mix(history, current, alpha'), alpha' from TAA_FEEDBACK (and the
 //      anti-flicker guard), mapped back to linear radiance, clamped to >= 0.
+// The glint-aware options (core/render/taa_settings.h; all off by default, and
+// then none of their code is compiled) read the surface pass's glint layer G
+// (rgb = the glint term's part of the pixel's radiance, a = its share s of the
+// luma, sand/sand.glsl sand_glint_share):
+//   TAA_ACCUMULATE   alpha' = max(alpha', 1/n), n = frames accumulated at the
+//                    pixel since its history last restarted (taa.extra.a,
+//                    reprojected with the nearest texel).
+//   TAA_REACTIVE     r = reactive s: h = mix(h, raw history, r) (the
+//                    rectification relaxed: a glint is an outlier of its 3x3
+//                    box, so the box cannot tell a valid glint history from a
+//                    ghost) and alpha' = mix(alpha', 1, r) (the history weight
+//                    lowered by 1 - r, so what is kept unrectified is kept
+//                    briefly and cannot trail).
+//   TAA_GLINT_LOCK   where s > 1/2 and the raw history's luma is at least half
+//                    the current one, h = raw history (no rectification).
+//   TAA_GLINT_LAYER  colour - G through steps 1-4 (and into taa.history); G
+//                    apart: G_out = mix(G_hist, G, glint_alpha) with G_hist
+//                    the same resample of taa.extra.rgb at q, under the same
+//                    validity, rectified by TAA_GLINT_CLAMP (none, or the
+//                    min/max of the 3x3 current G); out = colour' + G_out.
 // Inputs use texelFetch only (exact, no filtering hardware needed).
 // A full-screen fragment pass (passes/fullscreen.vert): one fragment per pixel
 // writes the resolved colour, the history and (anti_flicker) the lumas. On
@@ -31,15 +51,26 @@ layout(set = 0, binding = 0) uniform sampler2D color_tex;     // this frame, jit
 layout(set = 0, binding = 1) uniform sampler2D motion_tex;    // common/motion.glsl layout
 layout(set = 0, binding = 2) uniform sampler2D history_tex;   // last frame's resolve: rgb, a = distance
 layout(set = 0, binding = 3) uniform sampler2D luma_tex;      // anti-flicker: last lumas
+layout(set = 0, binding = 4) uniform sampler2D glint_tex;     // the surface pass's glint layer (TAA_GLINT)
+layout(set = 0, binding = 5) uniform sampler2D extra_tex;     // taa.extra of last frame (TAA_EXTRA)
 layout(location = 0) out vec4 out_color;    // taa.color
 layout(location = 1) out vec4 out_history;  // taa.history (this frame's slot)
 #if TAA_ANTI_FLICKER
 layout(location = 2) out vec4 out_luma;     // taa.luma (this frame's slot)
+#define TAA_EXTRA_LOCATION 3
+#else
+#define TAA_EXTRA_LOCATION 2
+#endif
+#ifndef TAA_EXTRA
+#define TAA_EXTRA 0
+#endif
+#if TAA_EXTRA
+layout(location = TAA_EXTRA_LOCATION) out vec4 out_extra;  // taa.extra: rgb glint history, a = n
 #endif
 
 layout(push_constant) uniform Push {
   vec4 size_alpha_gamma;  // width, height, alpha, gamma
-  vec4 valid_tol;         // history valid (0/1), disocclusion tolerance
+  vec4 valid_tol;         // history valid (0/1), disocclusion tolerance, reactive, glint_alpha
 };
 
 #define CLAMP_NONE 0
@@ -81,6 +112,24 @@ layout(push_constant) uniform Push {
 #endif
 #ifndef TAA_DERING
 #define TAA_DERING 0
+#endif
+#ifndef TAA_GLINT
+#define TAA_GLINT 0
+#endif
+#ifndef TAA_ACCUMULATE
+#define TAA_ACCUMULATE 0
+#endif
+#ifndef TAA_REACTIVE
+#define TAA_REACTIVE 0
+#endif
+#ifndef TAA_GLINT_LAYER
+#define TAA_GLINT_LAYER 0
+#endif
+#ifndef TAA_GLINT_CLAMP
+#define TAA_GLINT_CLAMP 0
+#endif
+#ifndef TAA_GLINT_LOCK
+#define TAA_GLINT_LOCK 0
 #endif
 
 ivec2 g_size;
@@ -133,6 +182,15 @@ float space_luma(vec3 y) {
 
 vec4 fetch(sampler2D t, ivec2 p) { return texelFetch(t, clamp(p, ivec2(0), g_size - 1), 0); }
 
+// The colour steps 1-4 resolve: the frame's, or with the layers separated, the frame's without its glints.
+vec3 resolved_rgb(ivec2 q) {
+#if TAA_GLINT_LAYER
+  return fetch(color_tex, q).rgb - fetch(glint_tex, q).rgb;
+#else
+  return fetch(color_tex, q).rgb;
+#endif
+}
+
 // A colour as the neighbourhood box sees it: HDR-mapped, in box space.
 vec3 box_colour(vec3 c) { return to_space(hdr_forward(max(c, vec3(0.0)))); }
 
@@ -168,7 +226,7 @@ vec3 box_colour(vec3 c) { return to_space(hdr_forward(max(c, vec3(0.0)))); }
       N[2][c_] = o.y > 0 ? b_ : a_;                                                         \
     }                                                                                       \
   }
-vec3 fetch_box_colour(ivec2 q) { return box_colour(fetch(color_tex, q).rgb); }
+vec3 fetch_box_colour(ivec2 q) { return box_colour(resolved_rgb(q)); }
 vec4 fetch_motion(ivec2 q) { return fetch(motion_tex, q); }
 #endif
 
@@ -248,7 +306,16 @@ void main() {
 
   // ---- current neighbourhood (HDR-mapped, in box space) and motion
   vec4 centre_px = fetch(color_tex, p);
-  vec3 cur = box_colour(centre_px.rgb);
+#if TAA_GLINT
+  vec4 glint_px = fetch(glint_tex, p);
+  float share = clamp(glint_px.a, 0.0, 1.0);  // NaN -> 0: no glint-aware change where the layer is undefined
+#endif
+#if TAA_GLINT_LAYER
+  vec3 centre_rgb = centre_px.rgb - glint_px.rgb;
+#else
+  vec3 centre_rgb = centre_px.rgb;
+#endif
+  vec3 cur = box_colour(centre_rgb);
   vec3 lo = cur, hi = cur;
   vec3 nb[9];
   vec4 mc = fetch(motion_tex, p);
@@ -270,7 +337,7 @@ void main() {
       vec4 mo = qm[dy + 1][dx + 1];
 #else
       ivec2 o = p + ivec2(dx, dy);
-      vec3 s = box_colour(fetch(color_tex, o).rgb);
+      vec3 s = box_colour(resolved_rgb(o));
       vec4 mo = fetch(motion_tex, o);
 #endif
       lo = min(lo, s);
@@ -342,6 +409,12 @@ void main() {
     valid = finite3(hist_lin);
   }
 
+#if TAA_EXTRA
+  // The frames accumulated at the reprojected point (nearest texel), this one included.
+  float n = valid ? min(texelFetch(extra_tex, ivec2(clamp(floor(q), vec2(0.0), vec2(g_size - 1))), 0).a, 1e6) + 1.0
+                  : 1.0;
+  if (!(n >= 1.0)) n = 1.0;  // NaN in the history: restart the count
+#endif
   vec3 result = cur;
   float a = 1.0;
   vec4 lumas = vec4(0.0);
@@ -387,6 +460,17 @@ void main() {
     a *= 1.0 - 0.5 * s;
     lumas = vec4(lh.y, lh.z, Lc, min(lh.w + 1.0, 3.0));
 #endif
+#if TAA_ACCUMULATE
+    a = max(a, 1.0 / n);
+#endif
+#if TAA_GLINT_LOCK
+    if (share > 0.5 && space_luma(raw) >= 0.5 * space_luma(cur)) h = raw;
+#endif
+#if TAA_REACTIVE
+    float r = valid_tol.z * share;
+    h = mix(h, raw, r);
+    a = mix(a, 1.0, r);
+#endif
     result = mix(h, cur, a);
   }
 #if TAA_ANTI_FLICKER
@@ -394,13 +478,54 @@ void main() {
 #endif
 
   vec3 lin = max(hdr_inverse(max(from_space(result), vec3(0.0))), vec3(0.0));
-  if (!finite3(lin)) lin = max(centre_px.rgb, vec3(0.0));
+  if (!finite3(lin)) lin = max(centre_rgb, vec3(0.0));
   // A current sample that is NaN or infinite is a defect of the frame: passed through as it is, so the
   // frame's scan counts it (the clamps above would turn it into 0 and hide it); the history restarts
   // from it being non-finite.
   if (!finite3(centre_px.rgb)) lin = centre_px.rgb;
+#if TAA_GLINT_LAYER
+  // The glint layer under its own rule, with the base's validity (q, disocclusion) and filter.
+  vec3 g_cur = glint_px.rgb, g_out = g_cur;
+  if (valid) {
+    Taps kg = taps_2x2(extra_tex, q);
+#if TAA_FILTER == FILTER_CATMULL_ROM
+    vec3 g_hist = catmull_rom(extra_tex, kg);
+#else
+    vec3 g_hist = max(bilinear(kg), vec3(0.0));
+#endif
+#if TAA_GLINT_CLAMP == 1
+    vec3 g_lo = g_cur, g_hi = g_cur;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        vec3 gs = fetch(glint_tex, p + ivec2(dx, dy)).rgb;
+        g_lo = min(g_lo, gs);
+        g_hi = max(g_hi, gs);
+      }
+    g_hist = clamp(g_hist, g_lo, g_hi);
+#endif
+    float ag = valid_tol.w;
+#if TAA_ACCUMULATE
+    ag = max(ag, 1.0 / n);
+#endif
+    if (finite3(g_hist)) g_out = mix(g_hist, g_cur, ag);
+  }
+  vec3 base_lin = lin;
+  lin = base_lin + g_out;
+  if (!finite3(lin)) lin = max(centre_px.rgb, vec3(0.0));
+  if (!finite3(centre_px.rgb)) lin = centre_px.rgb;
+  out_color = vec4(lin, centre_px.a);
+  out_history = vec4(base_lin, mc.z);
+#else
   out_color = vec4(lin, centre_px.a);
   out_history = vec4(lin, mc.z);
+#endif
+#if TAA_EXTRA
+#if TAA_GLINT_LAYER
+  out_extra = vec4(finite3(g_out) ? g_out : vec3(0.0), n);
+#else
+  out_extra = vec4(0.0, 0.0, 0.0, n);
+#endif
+#endif
 #if TAA_ANTI_FLICKER
   out_luma = lumas;
 #endif

@@ -211,8 +211,23 @@ SandTerms sand_terms(SandParams p, SandSurface s, SandLight l) {
   return r;
 }
 
-vec3 sand_shade(SandParams p, SandSurface s, SandLight l) {
-  SandTerms r = sand_terms(p, s, l);
+// The glint term's part of L_final: eq. 4.38 and 4.33 are linear in L_s = L_f + L_g and eq. 4.36 in
+// its far-field glints, so L_final = G + (the same with L_g = L_g_far = 0), where
+//   G = (1 - sig) rho_m^intensity L_g + sig rho_n^intensity L_g_far.
+vec3 sand_glint_radiance(SandTerms r) {
+  return (1.0 - r.sig) * r.rho_m_intensity * r.L_g + r.sig * r.rho_n_intensity * r.L_g_far;
+}
+// The share of L_final's Rec. 709 luma that is G's, in [0, 1]; 0 where L_final is black (or the ratio
+// is not finite). What the glint-aware TAA options read (passes/taa.frag).
+float sand_glint_share(vec3 G, vec3 L_final_) {
+  const vec3 w = vec3(0.2126, 0.7152, 0.0722);
+  float lf = dot(L_final_, w), lg = dot(G, w);
+  float s = lf > 0.0 ? lg / lf : 0.0;
+  return s >= 0.0 ? min(s, 1.0) : 0.0;
+}
+
+// What sand_shade() returns, from the terms (SAND_DEBUG).
+vec3 sand_output(SandTerms r) {
 #if SAND_DEBUG == SAND_DEBUG_DIFFUSE
   return r.L_d;
 #elif SAND_DEBUG == SAND_DEBUG_SPECULAR
@@ -237,5 +252,7 @@ vec3 sand_shade(SandParams p, SandSurface s, SandLight l) {
   return r.L_final;
 #endif
 }
+
+vec3 sand_shade(SandParams p, SandSurface s, SandLight l) { return sand_output(sand_terms(p, s, l)); }
 
 #endif  // GLINTLAB_SAND_GLSL

@@ -16,7 +16,7 @@ layout(push_constant) uniform Push { uint count; };
 #include "sand/sand.glsl"
 
 #define SAND_IN_STRIDE 96u
-#define SAND_OUT_STRIDE 72u
+#define SAND_OUT_STRIDE 76u
 
 vec3 in3(uint b) { return vec3(inputs[b], inputs[b + 1u], inputs[b + 2u]); }
 vec2 in2(uint b) { return vec2(inputs[b], inputs[b + 1u]); }
@@ -110,5 +110,8 @@ void main() {
   out3(o + 64u, b2);
   out1(o + 67u, r.glint_cells);
   out3(o + 68u, r.L_g_far);
-  for (uint k = 71u; k < SAND_OUT_STRIDE; ++k) out1(o + k, 0.0);
+  out1(o + 71u, 0.0);
+  vec3 G = sand_glint_radiance(r);
+  out3(o + 72u, G);
+  out1(o + 75u, sand_glint_share(G, r.L_final));
 }

@@ -10,8 +10,11 @@
 //                     3 C (1 + frame_sun_dir.y (h - 1/2)) (a flat region with a small relative spread)
 //   frame_sun_dir.z   hash seed (a new pattern each frame)
 //   env_sh[0]         xy: the motion vector of every pixel (pixels) when z > 0.5, and then the
-//                     distances now and last frame are both w (no disocclusion anywhere);
+//                     distances now and last frame are both w (a disocclusion everywhere in a
+//                     frame whose w differs from the last frame's, none otherwise);
 //                     z <= 0.5: the true motion of the surface (common/motion.glsl)
+// With SURFACE_GLINT the glint layer (passes/sand.frag's layout) is the bright pixels of pattern 2
+// (share 1) and 0 elsewhere: the sparse glints the glint-aware options act on.
 #include "common/frame.glsl"
 #include "common/surface_interface.glsl"
 #include "common/pcg3d.glsl"
@@ -20,6 +23,9 @@
 layout(location = 0) out vec4 out_color;
 #if SURFACE_MOTION
 layout(location = 1) out vec4 out_motion;
+#endif
+#if SURFACE_GLINT
+layout(location = 2) out vec4 out_glint;
 #endif
 
 void main() {
@@ -30,11 +36,15 @@ void main() {
   if (frame_sun_dir.x > 2.5) c = C * (1.0 + frame_sun_dir.y * (h - 0.5));
   else if (frame_sun_dir.x > 1.5) c = h.x < frame_sun_dir.y ? C : C * (1.0 / 64.0);
   else if (frame_sun_dir.x > 0.5) c = C * h;
+  bool glint = frame_sun_dir.x > 1.5 && frame_sun_dir.x < 2.5 && h.x < frame_sun_dir.y;
   float w = sample_jitter_weight.z;
   out_color = vec4(c * w, w);
 #if SURFACE_MOTION
   vec4 m = surface_motion(v_pix, v_prev_pix, v_eye_offset, v_prev_eye_offset);
   if (env_sh[0].z > 0.5) m = vec4(env_sh[0].xy, env_sh[0].w, env_sh[0].w);
   out_motion = m;
+#endif
+#if SURFACE_GLINT
+  out_glint = glint ? vec4(c * w, w) : vec4(0.0);
 #endif
 }

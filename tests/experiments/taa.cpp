@@ -279,3 +279,124 @@ TEST(Taa, QuadsSharingTheirFetchesGiveTheBitsOfFetchingEveryTexel) {
     }
   }
 }
+
+namespace {
+
+// Runs the frames of `e`'s orbit through a surface pass (with the glint layer where `settings` reads
+// it) and `settings`' resolve; returns every frame's taa.color.
+std::vector<Image> resolve_frames(const json& e, const core::TaaSettings& settings) {
+  core::VkContext& ctx = test::shared_context();
+  json ev = e;
+  ev["variants"] = json::array({json{{"name", "taa"}, {"aa", "taa"}}});
+  const ExperimentSpec spec = ExperimentSpec::from_json(ev, "inline-test");
+  const SceneData data = build_scene(spec, metrics::ColorManager());
+  core::SceneGpu scene(ctx, data.mesh, data.env_texture);
+  const core::MaterialProgram program =
+      core::sand_program(spec.variants[0].material, data.range, core::ProgramRole::Variant);
+  const int w = spec.width, h = spec.height;
+  core::FrameGraph graph(ctx, w, h);
+  core::SurfacePassOptions o;
+  o.program = program;
+  o.single_sample = true;
+  o.motion = true;
+  o.glint = settings.reads_glints();
+  graph.add(std::make_unique<core::SurfacePass>(ctx, scene, o));
+  graph.add(std::make_unique<core::TaaPass>(ctx, settings));
+  graph.build({"taa.color"});
+  std::vector<Image> out;
+  for (int k = 0; k < spec.frames; ++k) {
+    core::FrameInputs in;
+    in.frame = k;
+    in.uniforms = frame_uniforms(spec, data, k);
+    in.samples = core::samples_for(spec.path, k, w, h, {core::jitter_offset(settings.jitter, k)});
+    out.push_back(graph.execute(in).images.at("taa.color"));
+  }
+  return out;
+}
+
+size_t differing_floats(const std::vector<Image>& a, const std::vector<Image>& b) {
+  size_t differ = 0;
+  for (size_t k = 0; k < a.size(); ++k)
+    for (size_t i = 0; i < a[k].data.size(); ++i) differ += a[k].data[i] != b[k].data[i];
+  return differ;
+}
+
+}  // namespace
+
+// The glint-aware options are exact no-ops where there are no glints: with the glint term off
+// (I_glints = 0: the glint layer is 0 and its share 0), the layered resolve (colour - 0 through the
+// resolve, a glint history of zeros added back), the reactive mask (r = 0) and the locks (no pixel
+// is glint) give the bits of the plain resolve, frame after frame of a moving, jittered orbit with
+// disocclusions. With glints the same options change the image (so the comparison can fail).
+TEST(Taa, GlintAwareOptionsWithAnEmptyGlintLayerGiveThePlainResolvesBits) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  for (core::TaaHistoryFilter filter : {core::TaaHistoryFilter::CatmullRom, core::TaaHistoryFilter::Bilinear}) {
+    core::TaaSettings base;
+    base.dering = true;
+    base.history_filter = filter;
+    core::TaaSettings lay = base, rea = base;
+    lay.glint_layer = true;
+    lay.glint_clamp = core::TaaGlintClamp::MinMax;
+    rea.reactive = 0.5;
+    rea.glint_lock = true;
+    json dark = glint_scene(64, 36, orbit(3.0, 6, 40));
+    dark["material"]["I_glints"] = {0, 0, 0};
+    const std::vector<Image> want = resolve_frames(dark, base);
+    size_t lit = 0;
+    for (const Image& f : want)
+      for (float v : f.data) lit += v > 0.0f;
+    EXPECT_GT(lit, want.size() * 64 * 36) << "the frames must show something";
+    EXPECT_EQ(differing_floats(want, resolve_frames(dark, lay)), 0u) << "layered, empty glint layer";
+    EXPECT_EQ(differing_floats(want, resolve_frames(dark, rea)), 0u) << "reactive + locks, no glints";
+
+    const json glinting = glint_scene(64, 36, orbit(3.0, 6, 40));
+    const std::vector<Image> with_glints = resolve_frames(glinting, base);
+    EXPECT_GT(differing_floats(with_glints, resolve_frames(glinting, lay)), 100u) << "layered, with glints";
+    EXPECT_GT(differing_floats(with_glints, resolve_frames(glinting, rea)), 100u) << "reactive, with glints";
+  }
+}
+
+// The accumulation schedule alpha = max(alpha_min, 1/n) weighs every frame since the last reset
+// equally until 1/n falls below alpha_min: on a static view (zero motion, so the history is read at
+// texel centres, unfiltered) with no rectification and alpha_min = 1/64, frame k is the mean of the
+// k + 1 jittered one-sample frames, which is what supersampling with those k + 1 offsets computes.
+// Checked against that mean at every frame (stated bound 2e-6 relative + 1e-7: fp32 rounding of a
+// running mean over 16 terms); Falcor's exponential weights (alpha 0.1, no schedule) stay far from
+// it (the same comparison fails by more than 1e-2).
+TEST(Taa, AccumulationScheduleOnAStaticViewIsTheMeanOfItsJitteredFrames) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const json path = {{"type", "static"}, {"fps", 30},  {"frames", 16}, {"position", {-3.6252, 1.6905, 0.0}},
+                     {"target", {0, 0, 0}}, {"fov", 20}};  // sand only: no silhouette against the sky
+  const json e = glint_scene(64, 36, path);
+  core::TaaSettings one;  // alpha 1: each frame its own jittered sample
+  one.clamp = core::TaaClamp::None;
+  one.feedback = core::TaaFeedback::Fixed;
+  one.alpha = 1.0;
+  core::TaaSettings acc = one, ema = one;
+  acc.alpha = 1.0 / 64;
+  acc.accumulate = true;
+  ema.alpha = 0.1;
+  const std::vector<Image> samples = resolve_frames(e, one), accumulated = resolve_frames(e, acc),
+                           exponential = resolve_frames(e, ema);
+  ASSERT_EQ(samples.size(), 16u);
+  std::vector<double> mean(samples[0].data.size(), 0.0);
+  double worst_acc = 0, worst_ema = 0;
+  size_t bad = 0, total = 0;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    for (size_t i = 0; i < mean.size(); ++i) {
+      if (i % 4 == 3) continue;  // coverage
+      mean[i] += samples[k].data[i];
+      const double m = mean[i] / double(k + 1), scale = 2e-6 * std::abs(m) + 1e-7;
+      worst_acc = std::max(worst_acc, std::abs(accumulated[k].data[i] - m) / scale);
+      bad += std::abs(accumulated[k].data[i] - m) > scale;
+      ++total;
+      worst_ema = std::max(worst_ema, std::abs(exponential[k].data[i] - m) / (std::abs(m) + 1e-7));
+    }
+  }
+  std::printf("accumulated vs the mean of its samples: worst error / bound %.3g (%zu of %zu); exponential: worst relative %.3g\n",
+              worst_acc, bad, total, worst_ema);
+  EXPECT_LE(worst_acc, 1.0);
+  EXPECT_GT(worst_ema, 1e-2);
+}

@@ -26,7 +26,7 @@ std::vector<float> run_chunked(core::VkContext& ctx, const std::string& shader, 
                                const std::vector<float>& in, size_t in_stride, size_t out_stride, size_t items);
 
 // ---- shaders/tests/sand_terms.comp: one shading point of the sand material
-constexpr size_t kSandTermsIn = 96, kSandTermsOut = 72;
+constexpr size_t kSandTermsIn = 96, kSandTermsOut = 76;
 struct SandTermsInput {
   std::array<float, 3> x_obj, n, wo, wi, L_i, L_sky;
   float dist;

@@ -252,6 +252,17 @@ vec3 L_close(const vec3& L_d_, const vec3& L_s_, const vec3& L_t_, double rho_m_
 
 vec3 L_final(const vec3& L_close_, const vec3& L_far_, double sig_) { return (1.0 - sig_) * L_close_ + sig_ * L_far_; }
 
+vec3 glint_radiance(const vec3& L_g_, const vec3& L_g_far_, double rho_m_intensity_, double rho_n_intensity_,
+                    double sig_) {
+  return (1.0 - sig_) * rho_m_intensity_ * L_g_ + sig_ * rho_n_intensity_ * L_g_far_;
+}
+
+double glint_share(const vec3& G, const vec3& L_final_) {
+  const vec3 w(0.2126, 0.7152, 0.0722);
+  const double lf = glm::dot(L_final_, w), lg = glm::dot(G, w);
+  return lf > 0.0 ? std::clamp(lg / lf, 0.0, 1.0) : 0.0;
+}
+
 double sky_diffuse_scale(uint32_t energy_consistent) { return energy_consistent ? kPi : 1.0; }
 double sun_lobe_scale(uint32_t energy_consistent) { return energy_consistent ? 1.0 / kPi : 1.0; }
 

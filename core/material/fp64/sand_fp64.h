@@ -91,6 +91,12 @@ vec3 L_far(const vec3& L_brdf_, const vec3& L_f_, const vec3& L_t_, double rho_n
 double sig(double x, double a, double b);                               // eq. 4.37
 vec3 L_close(const vec3& L_d_, const vec3& L_s_, const vec3& L_t_, double rho_m_intensity_);  // eq. 4.33
 vec3 L_final(const vec3& L_close_, const vec3& L_far_, double sig_);   // eq. 4.38
+// The glint term's part of L_final (sand/sand.glsl sand_glint_radiance): eq. 4.38, 4.33 and 4.36 are
+// linear in the glint terms, G = (1 - sig) rho_m^intensity L_g + sig rho_n^intensity L_g_far.
+vec3 glint_radiance(const vec3& L_g_, const vec3& L_g_far_, double rho_m_intensity_, double rho_n_intensity_,
+                    double sig_);
+// G's share of L_final's Rec. 709 luma in [0, 1]; 0 where L_final's luma is not positive.
+double glint_share(const vec3& G, const vec3& L_final_);
 // shaders/sand/energy.glsl: 1 for the thesis; pi and 1/pi when energy consistent
 double sky_diffuse_scale(uint32_t energy_consistent);
 double sun_lobe_scale(uint32_t energy_consistent);

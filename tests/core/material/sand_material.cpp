@@ -630,6 +630,18 @@ TEST(SandGpu, EveryTermMatchesFp64OnRandomAndExtremeInputs) {
       if (!micro || lobe_ok) {
         chk3("L_final", 55, L_final_sub, rel_g, floorON + floorFS + floor_Lg + fl_new);
         chk3("sand_shade", 58, L_final_sub, rel_g, floorON + floorFS + floor_Lg + fl_new);
+        // The glint layer the glint-aware TAA reads (passes/sand.frag): G within the bound of its
+        // L_g terms; its share of the luma where L_final's luma is 1e3 times its absolute bound at
+        // least, within 4 rel_g + 2 (bound of G + bound of L_final) / luma (a ratio of two values
+        // with those errors).
+        const vec3 G_sub = ref::glint_radiance(L_g_sub, r.L_g_far, r.rho_m_intensity, r.rho_n_intensity, r.sig);
+        const double floor_G = floor_Lg + fl_new;
+        chk3("glint radiance", 72, G_sub, rel_g, floor_G + 1e-30);
+        const double lf = glm::dot(L_final_sub, vec3(0.2126, 0.7152, 0.0722));
+        const double floor_all = floorON + floorFS + floor_Lg + fl_new;
+        if (lf > 1e3 * floor_all) {
+          chk("glint share", 75, ref::glint_share(G_sub, L_final_sub), 0, 4 * rel_g + 2 * (floor_G + floor_all) / lf);
+        }
       }
     }
     vec3 b1, b2;
