@@ -172,6 +172,28 @@ TEST(ExperimentSpec, RejectsUnknownAaMethod) {
   expect_rejected(j, {"variants[0].aa", "fxaa", "ssaa"});
 }
 
+TEST(ExperimentSpec, GlintAwareTaaKeysAreCheckedBeforeAnyWork) {
+  json j = minimal();
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"reactive": 1.5}}])");
+  expect_rejected(j, {"variants[0].taa.reactive", "out of range"});
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"glint_clamp": "minmax"}}])");
+  expect_rejected(j, {"variants[0].taa.glint_clamp", "glint_layer"});
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"glint_layer": true, "glint_clamp": "clip"}}])");
+  expect_rejected(j, {"variants[0].taa.glint_clamp", "clip", "minmax"});
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"glint_layer": true, "glint_alpha": 0}}])");
+  expect_rejected(j, {"variants[0].taa.glint_alpha", "out of range"});
+  j["variants"] = json::parse(
+      R"([{"name": "t", "aa": "taa", "taa": {"glint_layer": true, "glint_alpha": 0.3, "glint_clamp": "minmax",
+           "accumulate": true, "reactive": 0.5, "glint_lock": true}}])");
+  const glintlab::core::TaaSettings t = ExperimentSpec::from_json(j, kFile).variants[0].taa;
+  EXPECT_TRUE(t.glint_layer && t.accumulate && t.glint_lock);
+  EXPECT_EQ(t.glint_clamp, glintlab::core::TaaGlintClamp::MinMax);
+  EXPECT_DOUBLE_EQ(t.glint_alpha, 0.3);
+  EXPECT_DOUBLE_EQ(t.reactive, 0.5);
+  EXPECT_TRUE(t.reads_glints() && t.keeps_extra());
+  EXPECT_FALSE(glintlab::core::TaaSettings{}.reads_glints() || glintlab::core::TaaSettings{}.keeps_extra()) << "off by default";
+}
+
 TEST(ExperimentSpec, RejectsUnknownDebugOutput) {
   json j = minimal();
   j["variants"][0]["debug"] = "normals";

@@ -97,7 +97,11 @@ TEST(Taa, EveryOptionRunsAndAppearsInFramesCsv) {
       {"anti_flicker", {true}},
       {"dering", {true}},
       {"alpha", {0.04}},
-      {"gamma", {1.25}}};
+      {"gamma", {1.25}},
+      {"accumulate", {true}},
+      {"reactive", {0.5}},
+      {"glint_layer", {true}},
+      {"glint_lock", {true}}};
   for (const auto& [key, values] : options)
     for (const auto& v : values) {
       std::string name = "taa-" + key + "-" + (v.is_string() ? v.get<std::string>() : v.dump());
@@ -105,6 +109,12 @@ TEST(Taa, EveryOptionRunsAndAppearsInFramesCsv) {
         if (c == '.') c = 'p';
       variants.push_back({{"name", name}, {"aa", "taa"}, {"taa", {{key, v}}}});
     }
+  // The glint layer's own keys, and every target of the resolve at once (taa.luma and taa.extra).
+  variants.push_back({{"name", "taa-glint-everything"},
+                      {"aa", "taa"},
+                      {"taa",
+                       {{"glint_layer", true}, {"glint_alpha", 0.3}, {"glint_clamp", "minmax"}, {"accumulate", true},
+                        {"reactive", 0.25}, {"glint_lock", true}, {"anti_flicker", true}}}});
   e["variants"] = variants;
   const glintlab::test::TempDir tmp("taa_options");
   json s = run(e, tmp.path());
