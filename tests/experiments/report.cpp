@@ -192,6 +192,15 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
                                std::string("temporal error along the motion"), std::string("flicker excess"),
                                std::string("temporal lag"), std::string("ΔE00")})
     EXPECT_NE(report.find(s), std::string::npos) << "report.html does not mention " << s;
+  // The glint density as a ratio to the truth's, in the table and as a Pareto panel, wherever the
+  // truth has glints.
+  bool truth_has_glints = false;
+  for (const auto& v : summary["variants"])
+    if (v["metrics"].contains("glint_density_ref") && v["metrics"]["glint_density_ref"]["mean"].get<double>() > 0)
+      truth_has_glints = true;
+  ASSERT_TRUE(truth_has_glints) << "the test's run should show glints";
+  EXPECT_NE(report.find("glint density ratio"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "figures" / "pareto_glint_density_ratio.svg"));
   // Plots also as SVG and PDF beside the report.
   for (const char* name : {"pareto", "pareto_deltaE2000", "pareto_flip", "pareto_temporal_error_mc", "per_frame"}) {
     const fs::path svg = out / "figures" / (std::string(name) + ".svg");
