@@ -13,6 +13,7 @@ PKGS=(
   fonts-dejavu-core
   clang libclang-rt-14-dev llvm
   python3 python3-numpy python3-matplotlib python3-pil chromium  # report (experiments/report/) and its browser test
+  python3-optuna python3-sklearn parallel slurm-wlm munge  # tune (experiments/tune/): Optuna, its importances, schedulers
 )
 missing=()
 for p in "${PKGS[@]}"; do

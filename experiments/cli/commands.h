@@ -14,6 +14,7 @@ void add_list_command(CLI::App& app, int& exit_code);      // list
 void add_check_command(CLI::App& app, int& exit_code);     // check (experiments/cli/check.cpp)
 void add_report_command(CLI::App& app, int& exit_code);    // report (experiments/report/report.cpp)
 void add_stress_command(CLI::App& app, int& exit_code);    // stress (experiments/stress/)
+void add_tune_command(CLI::App& app, int& exit_code);      // tune (experiments/tune/)
 
 // Every command above, in the order `glintlab --help` lists them (main, and the options fuzzer).
 void add_all_commands(CLI::App& app, int& exit_code);

@@ -1,0 +1,223 @@
+// `glintlab tune` as a user runs it: the CLI, Optuna (Debian's python3-optuna) with its SQLite and
+// journal-file storages, several workers under GNU parallel, a worker killed mid-trial, and a
+// one-node Slurm cluster (slurm-wlm + munge, configured here in a temporary folder) running the
+// README's job-array recipes for `run --shard` + `merge` and for `tune`.
+#include "tests/support/temp_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kTiny = R"({"name": "tune-tiny", "resolution": [48, 27],
+ "scene": {"mesh": {"type": "wavy", "size": 10, "tessellation": 32, "amplitude": 0.4, "wavelength": 5},
+           "sky": {"turbidity": 3, "sky_intensity": 0.5, "sun_elevation_deg": 25, "sun_azimuth_deg": 30,
+                   "sun_intensity": 6}},
+ "camera_path": {"type": "orbit", "fps": 30, "frames": 4, "center": [0, 0, 0], "radius": 3.6252, "height": 1.6905,
+                 "start_deg": 180, "end_deg": 183, "fov": 40},
+ "material": {"preset": "thesis-hdri-match", "noise_scale": 400, "glint_sigma": 0.002, "I_glints": [20, 20, 20],
+              "sigmoid_a": 2, "sigmoid_b": 6},
+ "variants": [{"name": "no-aa"}, {"name": "taa", "aa": "taa"}],
+ "reference": {"grid": 2}, "metrics": ["deltaE2000"],
+ "output": {"exr": false, "png": false, "every": 1}})";
+
+struct Result {
+  int code = -1;
+  std::string output;
+};
+
+// Runs a shell command line, stdout and stderr captured.
+Result sh(const std::string& cmd) {
+  Result r;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// `glintlab tune` on the tiny experiment: alpha and clamp of its TAA, two objectives.
+std::string tune_cmd(const fs::path& root, const fs::path& study, int trials, const std::string& extra = "") {
+  return std::string(GLINTLAB_CLI) + " tune " + q(root / "tiny.json") +
+         " --base taa --space taa.alpha=0.02:0.5:log --space taa.clamp=none,variance"
+         " --objectives flicker_ratio,deltaE2000 --trials " +
+         std::to_string(trials) + " --study " + q(study) + " --cache " + q(root / "cache") + " " + extra;
+}
+
+using Row = std::map<std::string, std::string>;
+
+std::vector<Row> read_csv(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::vector<std::string> head;
+  std::vector<Row> rows;
+  auto split = [](const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string c;
+    while (std::getline(ss, c, ',')) out.push_back(c);
+    if (!s.empty() && s.back() == ',') out.push_back("");
+    return out;
+  };
+  if (!std::getline(in, line)) return rows;
+  head = split(line);
+  while (std::getline(in, line)) {
+    const auto cells = split(line);
+    Row r;
+    for (size_t i = 0; i < head.size() && i < cells.size(); ++i) r[head[i]] = cells[i];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+size_t count_state(const std::vector<Row>& rows, const std::string& state) {
+  size_t n = 0;
+  for (const Row& r : rows) n += r.at("state") == state;
+  return n;
+}
+
+class Tune : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (sh("/usr/bin/python3 -c 'import optuna'").code != 0)
+      GTEST_SKIP() << "python3-optuna is not installed (./bootstrap.sh installs it)";
+    std::ofstream(root() / "tiny.json") << kTiny;
+  }
+  const fs::path& root() { return tmp_.path(); }
+  glintlab::test::TempDir tmp_{"tune"};
+};
+
+}  // namespace
+
+TEST_F(Tune, BadSpaceIsAnErrorNamingTheKeyBeforeAnyTrial) {
+  const fs::path study = root() / "s";
+  auto expect_bad = [&](const std::string& space, const std::vector<std::string>& words) {
+    const Result r = sh(std::string(GLINTLAB_CLI) + " tune " + q(root() / "tiny.json") + " --base taa --space " + space +
+                        " --objectives deltaE2000 --trials 2 --study " + q(study) + " --cache " + q(root() / "cache"));
+    EXPECT_EQ(r.code, 2) << space << "\n" << r.output;
+    for (const auto& w : words) EXPECT_NE(r.output.find(w), std::string::npos) << space << ": no \"" << w << "\" in\n" << r.output;
+    EXPECT_FALSE(fs::exists(study / "trials")) << "a trial ran for " << space;
+  };
+  expect_bad("taa.no_such=0:1", {"taa.no_such", "alpha"});             // unknown key: the allowed ones listed
+  expect_bad("taa.alpha=0.5:2", {"taa.alpha", "out of range"});        // beyond what the schema allows
+  expect_bad("taa.alpha=0.5:0.1", {"taa.alpha", "lo must be below hi"});
+  expect_bad("taa.clamp=none,sometimes", {"taa.clamp", "sometimes", "variance"});
+  expect_bad("taa.alpha=0:0.5:log", {"log range needs lo > 0"});
+  const Result base = sh(std::string(GLINTLAB_CLI) + " tune " + q(root() / "tiny.json") +
+                         " --base nope --space taa.alpha=0.1:0.2 --objectives deltaE2000 --trials 2 --study " + q(study));
+  EXPECT_EQ(base.code, 2);
+  EXPECT_NE(base.output.find("no-aa, taa"), std::string::npos) << base.output;
+  const Result obj = sh(std::string(GLINTLAB_CLI) + " tune " + q(root() / "tiny.json") +
+                        " --base taa --space taa.alpha=0.1:0.2 --objectives ssim --trials 2 --study " + q(study));
+  EXPECT_EQ(obj.code, 2);
+  EXPECT_NE(obj.output.find("temporal_error_mc"), std::string::npos) << obj.output;
+}
+
+TEST_F(Tune, TwoTrialsAreDeterministicWithAFixedSeedAndAnotherStudyIsRefused) {
+  const Result a = sh(tune_cmd(root(), root() / "a", 2, "--seed 7"));
+  ASSERT_EQ(a.code, 0) << a.output;
+  const Result b = sh(tune_cmd(root(), root() / "b", 2, "--seed 7"));
+  ASSERT_EQ(b.code, 0) << b.output;
+  const auto ra = read_csv(root() / "a" / "trials.csv"), rb = read_csv(root() / "b" / "trials.csv");
+  ASSERT_EQ(ra.size(), 2u);
+  ASSERT_EQ(rb.size(), 2u);
+  for (size_t i = 0; i < 2; ++i)
+    for (const char* k : {"state", "taa.alpha", "taa.clamp", "flicker_ratio", "deltaE2000"})
+      EXPECT_EQ(ra[i].at(k), rb[i].at(k)) << "trial " << i << " " << k;
+  EXPECT_TRUE(fs::exists(root() / "a" / "pareto.json"));
+  EXPECT_TRUE(fs::exists(root() / "a" / "tune_report.html"));
+  // The same folder for another study (another base, space or objectives) is refused.
+  const Result other = sh(std::string(GLINTLAB_CLI) + " tune " + q(root() / "tiny.json") +
+                          " --base taa --space taa.gamma=0.5:2 --objectives deltaE2000 --trials 2 --study " +
+                          q(root() / "a") + " --cache " + q(root() / "cache"));
+  EXPECT_EQ(other.code, 2) << other.output;
+  EXPECT_NE(other.output.find("holds another study"), std::string::npos) << other.output;
+  // A larger budget needs --resume, and then only the missing trials run.
+  EXPECT_EQ(sh(tune_cmd(root(), root() / "a", 3, "--seed 7")).code, 2);
+  const Result more = sh(tune_cmd(root(), root() / "a", 3, "--seed 7 --resume"));
+  ASSERT_EQ(more.code, 0) << more.output;
+  EXPECT_EQ(count_state(read_csv(root() / "a" / "trials.csv"), "COMPLETE"), 3u);
+}
+
+TEST_F(Tune, WorkersUnderGnuParallelShareOneStudyAndStopAtExactlyN) {
+  if (sh("command -v parallel").code != 0) GTEST_SKIP() << "GNU parallel is not installed (./bootstrap.sh installs it)";
+  const fs::path study = root() / "p";
+  // The reference once, so both workers start on the same footing.
+  ASSERT_EQ(sh(tune_cmd(root(), root() / "warm", 1)).code, 0);
+  const Result r = sh("parallel --will-cite -N0 -j 3 --halt now,fail=1 " + tune_cmd(root(), study, 5) + " ::: 1 2 3");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto rows = read_csv(study / "trials.csv");
+  EXPECT_EQ(count_state(rows, "COMPLETE"), 5u);
+  std::set<std::string> numbers, workers;
+  for (const Row& row : rows) {
+    EXPECT_TRUE(numbers.insert(row.at("trial")).second) << "trial " << row.at("trial") << " twice";
+    if (row.at("state") == "COMPLETE") {
+      workers.insert(row.at("worker"));
+      EXPECT_TRUE(fs::exists(study / "trials" / (std::string(4 - row.at("trial").size(), '0') + row.at("trial")) / "run" /
+                             "summary.json"));
+    }
+  }
+  EXPECT_GE(workers.size(), 2u) << "the trials should come from more than one worker";
+}
+
+TEST_F(Tune, AWorkerKilledMidTrialLosesOnlyThatTrialWhichIsRetried) {
+  const fs::path study = root() / "k";
+  ASSERT_EQ(sh(tune_cmd(root(), root() / "warm", 1)).code, 0);  // the reference cached
+  const std::string cmd = tune_cmd(root(), study, 3);
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    setpgid(0, 0);  // its own process group: the driver and its `glintlab run` die together
+    freopen("/dev/null", "w", stderr);
+    freopen("/dev/null", "w", stdout);
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(pid, pid);
+  // Kill it while its second trial renders.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(study / "trials" / "0001" / "run.log") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  kill(-pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(fs::exists(study / "trials" / "0001")) << "the worker did not reach its second trial";
+  // Another worker on the same study: the dead worker's trial is marked FAIL and its settings run again.
+  const Result r = sh(cmd);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("stale"), std::string::npos) << r.output;
+  const auto rows = read_csv(study / "trials.csv");
+  EXPECT_EQ(count_state(rows, "COMPLETE"), 3u);
+  std::string killed_alpha;
+  for (const Row& row : rows)
+    if (row.at("state") == "FAIL") killed_alpha = row.at("taa.alpha");
+  ASSERT_FALSE(killed_alpha.empty()) << "no FAIL row for the killed trial";
+  bool retried = false;
+  for (const Row& row : rows)
+    if (row.at("state") == "COMPLETE" && !row.at("retry_of").empty() && row.at("taa.alpha") == killed_alpha)
+      retried = true;
+  EXPECT_TRUE(retried) << "the killed trial's settings were not run again";
+}
