@@ -221,3 +221,100 @@ TEST_F(Tune, AWorkerKilledMidTrialLosesOnlyThatTrialWhichIsRetried) {
       retried = true;
   EXPECT_TRUE(retried) << "the killed trial's settings were not run again";
 }
+
+namespace {
+
+// A one-node Slurm cluster in a temporary folder: munged with its own key and socket, slurmctld and
+// slurmd on ports of their own, every path in the folder; torn down with the object.
+class SlurmCluster {
+ public:
+  explicit SlurmCluster(const fs::path& dir) : dir_(dir) {
+    char host[256] = {};
+    gethostname(host, sizeof host - 1);
+    const int port = 20000 + int(getpid() % 2000) * 2;
+    fs::create_directories(dir / "state");
+    fs::create_directories(dir / "spool");
+    sh("dd if=/dev/urandom of=" + q(dir / "munge.key") + " bs=1024 count=1 && chmod 400 " + q(dir / "munge.key"));
+    const Result m = sh("munged --force --key-file=" + q(dir / "munge.key") + " --socket=" + q(dir / "munge.sock") +
+                        " --pid-file=" + q(dir / "munged.pid") + " --log-file=" + q(dir / "munged.log") +
+                        " --seed-file=" + q(dir / "munge.seed"));
+    if (m.code != 0) {
+      why_ = "munged did not start: " + m.output;
+      return;
+    }
+    std::ofstream c(dir / "slurm.conf");
+    const std::string d = dir.string();
+    c << "ClusterName=glintlab\nSlurmctldHost=" << host << "\nSlurmUser=root\nSlurmdUser=root\n"
+      << "SlurmctldPort=" << port << "\nSlurmdPort=" << port + 1 << "\nAuthType=auth/munge\nAuthInfo=socket=" << d
+      << "/munge.sock\nCredType=cred/munge\nStateSaveLocation=" << d << "/state\nSlurmdSpoolDir=" << d
+      << "/spool\nSlurmctldPidFile=" << d << "/slurmctld.pid\nSlurmdPidFile=" << d << "/slurmd.pid\n"
+      << "SlurmctldLogFile=" << d << "/slurmctld.log\nSlurmdLogFile=" << d << "/slurmd.log\n"
+      << "ProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\nSelectType=select/cons_tres\n"
+      << "SelectTypeParameters=CR_Core\nSchedulerType=sched/builtin\nReturnToService=2\nMpiDefault=none\n"
+      << "JobAcctGatherType=jobacct_gather/none\nAccountingStorageType=accounting_storage/none\n"
+      << "NodeName=" << host << " CPUs=" << std::thread::hardware_concurrency() << " State=UNKNOWN\n"
+      << "PartitionName=debug Nodes=ALL Default=YES MaxTime=INFINITE State=UP OverSubscribe=YES\n";
+    c.close();
+    setenv("SLURM_CONF", (dir / "slurm.conf").c_str(), 1);
+    const Result ctl = sh("slurmctld -i"), node = sh("slurmd");
+    if (ctl.code != 0 || node.code != 0) {
+      why_ = "slurmctld/slurmd did not start: " + ctl.output + node.output;
+      return;
+    }
+    for (int i = 0; i < 300 && why_.empty(); ++i) {
+      if (sh("sinfo -h -o %t").output.find("idle") != std::string::npos) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    why_ = "the node never became idle: " + sh("sinfo; tail -5 " + q(dir / "slurmctld.log") + " " +
+                                               q(dir / "slurmd.log")).output;
+  }
+  ~SlurmCluster() {
+    sh("scontrol shutdown");
+    for (const char* pid : {"slurmd.pid", "slurmctld.pid", "munged.pid"})
+      sh("test -f " + q(dir_ / pid) + " && kill $(cat " + q(dir_ / pid) + ")");
+    unsetenv("SLURM_CONF");
+  }
+  // Empty when the cluster runs, else why not.
+  const std::string& why_not() const { return why_; }
+
+ private:
+  fs::path dir_;
+  std::string why_;
+};
+
+}  // namespace
+
+// The README's Slurm recipes, end to end on a real (one-node) cluster: a job array of `run --shard
+// k/2` tasks and a merge job after it; a job array of two `tune` workers sharing a journal-file study.
+TEST_F(Tune, SlurmJobArraysRunShardsWithAMergeAndTuneWorkers) {
+  if (sh("command -v slurmctld && command -v slurmd && command -v munged && command -v sbatch").code != 0)
+    GTEST_SKIP() << "slurm-wlm and munge are not installed (./bootstrap.sh installs them)";
+  if (geteuid() != 0) GTEST_SKIP() << "a one-node Slurm cluster runs its daemons as root here; this user is not root";
+  SlurmCluster cluster(root() / "slurm");
+  ASSERT_TRUE(cluster.why_not().empty()) << cluster.why_not();
+  const std::string env = std::string("GLINTLAB=") + GLINTLAB_CLI + " ";
+  const std::string scripts = std::string(GLINTLAB_SOURCE_DIR) + "/experiments/slurm/";
+  // Shards, then the merge as a job that depends on the array.
+  const Result jid = sh(env + "sbatch --parsable --array=1-2 -o " + q(root() / "shard-%a.log") + " " + scripts +
+                        "shard.sh " + q(root() / "tiny.json") + " " + q(root() / "run") + " " + q(root() / "cache"));
+  ASSERT_EQ(jid.code, 0) << jid.output;
+  const std::string id = jid.output.substr(0, jid.output.find_first_of(";\n"));
+  const Result merge = sh("timeout 300 sbatch --wait --dependency=afterok:" + id + " -o " + q(root() / "merge.log") +
+                          " --wrap \"" + GLINTLAB_CLI + " merge " + q(root() / "run-1") + " " + q(root() / "run-2") +
+                          " --out " + q(root() / "run") + " --no-report\"");
+  ASSERT_EQ(merge.code, 0) << merge.output << sh("cat " + q(root() / "shard-1.log") + " " + q(root() / "merge.log")).output;
+  const auto rows = read_csv(root() / "run" / "frames.csv");
+  EXPECT_EQ(rows.size(), 8u) << "2 variants x 4 frames, each once";
+  std::set<std::string> seen;
+  for (const Row& r : rows) EXPECT_TRUE(seen.insert(r.at("variant") + "/" + r.at("frame")).second);
+  // Two tune workers as an array job.
+  const Result t = sh(env + "timeout 600 sbatch --wait --array=1-2 -o " + q(root() / "tune-%a.log") + " " + scripts +
+                      "tune.sh " + q(root() / "tiny.json") +
+                      " --base taa --space taa.alpha=0.02:0.5:log --space taa.clamp=none,variance"
+                      " --objectives flicker_ratio,deltaE2000 --trials 4 --study " +
+                      q(root() / "study") + " --cache " + q(root() / "cache"));
+  ASSERT_EQ(t.code, 0) << t.output << sh("cat " + q(root() / "tune-1.log")).output;
+  const auto trials = read_csv(root() / "study" / "trials.csv");
+  EXPECT_EQ(count_state(trials, "COMPLETE"), 4u);
+  EXPECT_TRUE(fs::exists(root() / "study" / "study.journal"));
+}
