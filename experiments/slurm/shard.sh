@@ -1,7 +1,7 @@
 #!/bin/bash
 # One shard of a run per task of a Slurm job array, then `merge` (README, "Resume and shards"):
 #   jid=$(sbatch --parsable --array=1-8 experiments/slurm/shard.sh EXPERIMENT OUT CACHE)
-#   sbatch --dependency=afterok:$jid --wrap "build/glintlab merge OUT-{1..8} --out OUT"
+#   sbatch --dependency=afterok:$jid --wrap "build/glintlab merge OUT-* --out OUT"
 # Task k runs `run --shard k/n` into OUT-k (n = the array's size); CACHE is the shared reference cache
 # on the cluster's file system. --resume: a requeued task continues where it was killed.
 # GLINTLAB: the CLI (default build/glintlab, from the folder sbatch was called in).

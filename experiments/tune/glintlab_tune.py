@@ -313,7 +313,8 @@ def write_outputs(study_dir):
 
 
 def baseline(study_dir, d):
-    """Every shipped variant of the experiment, run once (cached references): where they fall."""
+    """Every shipped variant of the experiment with the base's glint model, run once (cached
+    references): where they fall."""
     out = os.path.join(study_dir, "baseline")
     summary = os.path.join(out, "summary.json")
     if not os.path.isfile(summary):
@@ -325,7 +326,11 @@ def baseline(study_dir, d):
     with open(summary, encoding="utf-8") as f:
         s = json.load(f)
     pts = []
+    # Only the variants measured against the same truth as the base (the same glint model).
+    model = next((v.get("glint_model") for v in s["variants"] if v["name"] == d["base"]), None)
     for v in s["variants"]:
+        if model is not None and v.get("glint_model") != model:
+            continue
         vals = [objective_value(v, m) for m in d["objectives"]]
         if all(x is not None for x in vals):
             pts.append((v["name"], vals))
@@ -396,6 +401,15 @@ def write_report(study_dir, d, study, done, front):
                     ax.set_ylabel(label(m), fontsize=8)
                 ax.tick_params(labelsize=6)
         figs.append(("Each objective against each searched option", svg(fig)))
+    dom_html = ""
+    base_pt = next((vals for name, vals in shipped if name == d["base"]), None)
+    if base_pt is not None:
+        better = [t for t in done if dominates(t.values, base_pt)]
+        dom_html = ("<h2>Against the base variant</h2><p>The base variant <b>" + html.escape(d["base"]) + "</b>: "
+                    + ", ".join(f"{html.escape(label(m))} {v:.4g}" for m, v in zip(objs, base_pt)) + ". "
+                    + (f"{len(better)} trial(s) dominate it on every objective: "
+                       + ", ".join(f"{t.number} (" + ", ".join(f"{v:.4g}" for v in t.values) + ")" for t in better)
+                       if better else "No trial dominates it on every objective in the space searched.") + "</p>")
     rows = "".join(f"<tr><td>{t.number}</td>" + "".join(f"<td>{v:.4g}</td>" for v in t.values) +
                    f"<td><code>{html.escape(json.dumps(t.params))}</code></td></tr>" for t in front)
     body = (f"<h1>glintlab tune: {html.escape(d['experiment'])} / {html.escape(d['base'])}</h1>"
@@ -404,7 +418,7 @@ def write_report(study_dir, d, study, done, front):
             + ", ".join(html.escape(label(m)) for m in objs) + ". Every trial is a <code>glintlab run</code> in "
             "<code>trials/NNNN/</code>; settings and objectives of all of them in <code>trials.csv</code>, the "
             "non-dominated ones as variants to paste in <code>pareto.json</code>.</p>"
-            + "".join(f"<h2>{html.escape(t)}</h2><figure>{s}</figure>" for t, s in figs)
+            + dom_html + "".join(f"<h2>{html.escape(t)}</h2><figure>{s}</figure>" for t, s in figs)
             + "<h2>Pareto-optimal settings</h2><table><tr><th>trial</th>"
             + "".join(f"<th>{html.escape(label(m))}</th>" for m in objs) + f"<th>settings</th></tr>{rows}</table>"
             + ("<h2>Parameter importances (Optuna, fANOVA)</h2>" + imp_html if imp_html else ""))
