@@ -16,7 +16,7 @@
 // Tolerance of a metric: the worsening allowed, relative to the baseline
 // value (|log| for ratios: 0.05 allows a 5 % move away from 1). The defaults
 // (kDefaultTolerances) are set from the spread of the CI regression
-// experiment between repeated runs and lavapipe thread counts (README,
+// experiment between repeated runs and lavapipe thread counts (experiments/README.md,
 // "Regression check"); --tolerance metric=x overrides one.
 #pragma once
 

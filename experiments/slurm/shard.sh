@@ -1,5 +1,5 @@
 #!/bin/bash
-# One shard of a run per task of a Slurm job array, then `merge` (README, "Resume and shards"):
+# One shard of a run per task of a Slurm job array, then `merge` (experiments/README.md, resume and shards):
 #   jid=$(sbatch --parsable --array=1-8 experiments/slurm/shard.sh EXPERIMENT OUT CACHE)
 #   sbatch --dependency=afterok:$jid --wrap "build/glintlab merge OUT-* --out OUT"
 # Task k runs `run --shard k/n` into OUT-k (n = the array's size); CACHE is the shared reference cache

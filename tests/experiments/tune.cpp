@@ -1,7 +1,7 @@
 // `glintlab tune` as a user runs it: the CLI, Optuna (Debian's python3-optuna) with its SQLite and
 // journal-file storages, several workers under GNU parallel, a worker killed mid-trial, and a
 // one-node Slurm cluster (slurm-wlm + munge, configured here in a temporary folder) running the
-// README's job-array recipes for `run --shard` + `merge` and for `tune`.
+// job-array recipes (experiments/README.md) for `run --shard` + `merge` and for `tune`.
 #include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -284,7 +284,7 @@ class SlurmCluster {
 
 }  // namespace
 
-// The README's Slurm recipes, end to end on a real (one-node) cluster: a job array of `run --shard
+// The Slurm recipes of experiments/README.md, end to end on a real (one-node) cluster: a job array of `run --shard
 // k/2` tasks and a merge job after it; a job array of two `tune` workers sharing a journal-file study.
 TEST_F(Tune, SlurmJobArraysRunShardsWithAMergeAndTuneWorkers) {
   if (sh("command -v slurmctld && command -v slurmd && command -v munged && command -v sbatch").code != 0)
@@ -301,7 +301,7 @@ TEST_F(Tune, SlurmJobArraysRunShardsWithAMergeAndTuneWorkers) {
   const std::string id = jid.output.substr(0, jid.output.find_first_of(";\n"));
   const Result merge = sh("timeout 300 sbatch --wait --dependency=afterok:" + id + " -o " + q(root() / "merge.log") +
                           " --wrap \"" + GLINTLAB_CLI + " merge " + (root() / "run-").string() + "* --out " +
-                          (root() / "run").string() + " --no-report\"");  // the README's glob
+                          (root() / "run").string() + " --no-report\"");  // the recipe's glob
   ASSERT_EQ(merge.code, 0) << merge.output << sh("cat " + q(root() / "shard-1.log") + " " + q(root() / "merge.log")).output;
   const auto rows = read_csv(root() / "run" / "frames.csv");
   EXPECT_EQ(rows.size(), 8u) << "2 variants x 4 frames, each once";
