@@ -8,6 +8,7 @@
 #include "experiments/runner/runner.h"
 #include "metrics/color/image_io.h"
 
+#include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -51,26 +52,8 @@ std::string frame_name(int k) {
 using Rows = std::map<std::pair<std::string, int>, std::map<std::string, std::string>>;
 
 Rows read_csv(const fs::path& p) {
-  std::ifstream in(p);
-  std::string line;
-  std::vector<std::string> header;
   Rows rows;
-  auto split = [](const std::string& l) {
-    std::vector<std::string> cells;
-    std::stringstream ss(l);
-    std::string c;
-    while (std::getline(ss, c, ',')) cells.push_back(c);
-    if (!l.empty() && l.back() == ',') cells.push_back("");
-    return cells;
-  };
-  std::getline(in, line);
-  header = split(line);
-  while (std::getline(in, line)) {
-    const auto cells = split(line);
-    std::map<std::string, std::string> r;
-    for (size_t i = 0; i < header.size() && i < cells.size(); ++i) r[header[i]] = cells[i];
-    rows[{r["variant"], std::stoi(r["frame"])}] = r;
-  }
+  for (auto& r : test::read_csv_rows(p)) rows[{r["variant"], std::stoi(r["frame"])}] = r;
   return rows;
 }
 

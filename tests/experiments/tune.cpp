@@ -2,6 +2,7 @@
 // journal-file storages, several workers under GNU parallel, a worker killed mid-trial, and a
 // one-node Slurm cluster (slurm-wlm + munge, configured here in a temporary folder) running the
 // job-array recipes (experiments/README.md) for `run --shard` + `merge` and for `tune`.
+#include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -68,29 +69,7 @@ std::string tune_cmd(const fs::path& root, const fs::path& study, int trials, co
 
 using Row = std::map<std::string, std::string>;
 
-std::vector<Row> read_csv(const fs::path& p) {
-  std::ifstream in(p);
-  std::string line;
-  std::vector<std::string> head;
-  std::vector<Row> rows;
-  auto split = [](const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string c;
-    while (std::getline(ss, c, ',')) out.push_back(c);
-    if (!s.empty() && s.back() == ',') out.push_back("");
-    return out;
-  };
-  if (!std::getline(in, line)) return rows;
-  head = split(line);
-  while (std::getline(in, line)) {
-    const auto cells = split(line);
-    Row r;
-    for (size_t i = 0; i < head.size() && i < cells.size(); ++i) r[head[i]] = cells[i];
-    rows.push_back(r);
-  }
-  return rows;
-}
+std::vector<Row> read_csv(const fs::path& p) { return glintlab::test::read_csv_rows(p); }
 
 size_t count_state(const std::vector<Row>& rows, const std::string& state) {
   size_t n = 0;
