@@ -5,7 +5,9 @@
 #include "experiments/runner/runner.h"
 #include "metrics/color/image_io.h"
 
+#include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -25,14 +27,7 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   std::ifstream in(p);
   std::vector<std::vector<std::string>> rows;
   std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> row;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) row.push_back(cell);
-    if (!line.empty() && line.back() == ',') row.push_back("");
-    rows.push_back(row);
-  }
+  while (std::getline(in, line)) rows.push_back(test::split_csv_line(line));
   return rows;
 }
 

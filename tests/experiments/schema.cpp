@@ -4,7 +4,9 @@
 #include "experiments/runner/output_writers.h"
 #include "experiments/runner/schema.h"
 
+#include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,14 +35,7 @@ FrameRecord record(int variant, int frame) {
   return r;
 }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line);
-  std::string c;
-  while (std::getline(ss, c, ',')) cells.push_back(c);
-  if (!line.empty() && line.back() == ',') cells.push_back("");
-  return cells;
-}
+std::vector<std::string> split(const std::string& line) { return glintlab::test::split_csv_line(line); }
 
 }  // namespace
 
