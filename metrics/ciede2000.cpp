@@ -8,20 +8,16 @@
 #include "metrics/parallel.h"
 
 #include "metrics/error_metrics.h"
+#include "metrics/vector_math.h"
 
 namespace glintlab::metrics {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-
-// Hue angle in degrees in [0, 360); 0 when a' = b = 0 (Sharma et al. 2005, step 1).
-double hue_deg(double b, double a_prime) {
-  if (b == 0.0 && a_prime == 0.0) return 0.0;
-  double h = std::atan2(b, a_prime) / kDeg;
-  if (h < 0.0) h += 360.0;
-  return h;
-}
+constexpr double k25To7 = 6103515625.0;  // 25^7
+// Pairs per pass of ciede2000_n: its planes (about 20 of them) stay in the first-level cache.
+constexpr std::size_t kBlock = 256;
 }  // namespace
 
 Lab xyz_to_lab(double X, double Y, double Z) {
@@ -29,61 +25,99 @@ Lab xyz_to_lab(double X, double Y, double Z) {
   return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
 }
 
+// Sharma et al. 2005, steps 1-3, written as element-wise passes over planes of up to kBlock pairs:
+// the arithmetic passes vectorise (the branches of the paper are selects), and the transcendental
+// functions go through the array math of vector_math.h (libmvec).
+void ciede2000_n(const LabPlanes& lab1, const LabPlanes& lab2, double* out, std::size_t count, double kL, double kC,
+                 double kH) {
+  double C1p[kBlock], C2p[kBlock], a1p[kBlock], a2p[kBlock], h1p[kBlock], h2p[kBlock], dhp[kBlock], s[kBlock];
+  double hbar[kBlock], c1[kBlock], s1[kBlock], e[kBlock], r[kBlock];
+  for (std::size_t o = 0; o < count; o += kBlock) {
+    const std::size_t n = std::min(kBlock, count - o);
+    const double *L1 = lab1.L + o, *A1 = lab1.a + o, *B1 = lab1.b + o;
+    const double *L2 = lab2.L + o, *A2 = lab2.a + o, *B2 = lab2.b + o;
+    // step 1: C'_i, h'_i with a'_i = (1 + G) a_i (chromas as sqrt(a^2 + b^2): L*a*b* values are far
+    // from overflow, and hypot is slower).
+    for (std::size_t i = 0; i < n; ++i) {
+      const double Cab_bar = 0.5 * (std::sqrt(A1[i] * A1[i] + B1[i] * B1[i]) + std::sqrt(A2[i] * A2[i] + B2[i] * B2[i]));
+      const double Cab2 = Cab_bar * Cab_bar, Cab7 = Cab2 * Cab2 * Cab2 * Cab_bar;
+      const double G = 0.5 * (1.0 - std::sqrt(Cab7 / (Cab7 + k25To7)));
+      a1p[i] = (1.0 + G) * A1[i];
+      a2p[i] = (1.0 + G) * A2[i];
+      C1p[i] = std::sqrt(a1p[i] * a1p[i] + B1[i] * B1[i]);
+      C2p[i] = std::sqrt(a2p[i] * a2p[i] + B2[i] * B2[i]);
+    }
+    atan2_n(B1, a1p, h1p, n);
+    atan2_n(B2, a2p, h2p, n);
+    // Hue angles in degrees in [0, 360); 0 where a' = b = 0 (step 1). Then step 2's Δh' (0 when a chroma
+    // is 0) and step 3's mean hue h'_bar per the paper's four cases (the sum when a chroma is 0).
+    for (std::size_t i = 0; i < n; ++i) {
+      double g1 = h1p[i] / kDeg, g2 = h2p[i] / kDeg;
+      g1 = g1 < 0.0 ? g1 + 360.0 : g1;
+      g2 = g2 < 0.0 ? g2 + 360.0 : g2;
+      g1 = B1[i] == 0.0 && a1p[i] == 0.0 ? 0.0 : g1;
+      g2 = B2[i] == 0.0 && a2p[i] == 0.0 ? 0.0 : g2;
+      const bool chromatic = C1p[i] * C2p[i] != 0.0;
+      double d = g2 - g1;
+      d = d > 180.0 ? d - 360.0 : (d < -180.0 ? d + 360.0 : d);
+      const double sum = g1 + g2;
+      double mean = std::abs(g1 - g2) <= 180.0 ? 0.5 * sum : (sum < 360.0 ? 0.5 * (sum + 360.0) : 0.5 * (sum - 360.0));
+      // Exactly opposite chroma vectors (a colour and its mirror image; Sharma's pair 14 is one) put
+      // |h'_1 - h'_2| at 180° exactly, on the paper's "<= 180" tie, which the angles' rounding (atan2
+      // within a few ulp) must not decide: Δh' = +-180° and h'_bar = h'_1 +- 90°, as in exact arithmetic.
+      const bool opposite = a1p[i] * B2[i] == B1[i] * a2p[i] && a1p[i] * a2p[i] + B1[i] * B2[i] < 0.0;
+      d = opposite ? (g1 < 180.0 ? 180.0 : -180.0) : d;
+      mean = opposite ? (g1 < 180.0 ? g1 + 90.0 : g1 - 90.0) : mean;
+      dhp[i] = chromatic ? d : 0.0;
+      hbar[i] = chromatic ? mean : sum;
+      s[i] = 0.5 * dhp[i] * kDeg;
+      c1[i] = hbar[i] * kDeg;
+      const double hq = (hbar[i] - 275.0) / 25.0;
+      e[i] = -hq * hq;
+    }
+    sin_n(s, s, n);  // sin(Δh'/2)
+    sin_n(c1, s1, n);
+    cos_n(c1, c1, n);
+    exp_n(e, e, n);
+    // R_T = -sin(2 Δθ) R_C with Δθ = 30° exp(-((h'_bar - 275°) / 25°)^2): the angle first, its sine next.
+    for (std::size_t i = 0; i < n; ++i) r[i] = 2.0 * 30.0 * e[i] * kDeg;
+    sin_n(r, r, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      // step 2: ΔL', ΔC', ΔH'.
+      const double dLp = L2[i] - L1[i], dCp = C2p[i] - C1p[i];
+      const double dHp = 2.0 * std::sqrt(C1p[i] * C2p[i]) * s[i];
+      // step 3. T = 1 - 0.17 cos(h - 30°) + 0.24 cos 2h + 0.32 cos(3h + 6°) - 0.20 cos(4h - 63°), from
+      // one cos/sin pair through the multiple-angle and angle-sum identities instead of four cosines.
+      const double Lp_bar = 0.5 * (L1[i] + L2[i]), Cp_bar = 0.5 * (C1p[i] + C2p[i]);
+      const double cs1 = c1[i], sn1 = s1[i];
+      const double c2 = 2.0 * cs1 * cs1 - 1.0, s2 = 2.0 * sn1 * cs1;
+      const double c3 = cs1 * (2.0 * c2 - 1.0), s3 = sn1 * (2.0 * c2 + 1.0);  // 4c^3 - 3c, 3s - 4s^3
+      const double c4 = 2.0 * c2 * c2 - 1.0, s4 = 2.0 * s2 * c2;
+      constexpr double kCos30 = 0.86602540378443864676, kSin30 = 0.5;
+      constexpr double kCos6 = 0.99452189536827333692, kSin6 = 0.10452846326765347140;
+      constexpr double kCos63 = 0.45399049973954679156, kSin63 = 0.89100652418836786236;
+      const double T = 1.0 - 0.17 * (cs1 * kCos30 + sn1 * kSin30) + 0.24 * c2 + 0.32 * (c3 * kCos6 - s3 * kSin6) -
+                       0.20 * (c4 * kCos63 + s4 * kSin63);
+      const double Cp2 = Cp_bar * Cp_bar, Cp7 = Cp2 * Cp2 * Cp2 * Cp_bar;
+      const double R_C = 2.0 * std::sqrt(Cp7 / (Cp7 + k25To7));
+      const double L50 = (Lp_bar - 50.0) * (Lp_bar - 50.0);
+      const double S_L = 1.0 + 0.015 * L50 / std::sqrt(20.0 + L50);
+      const double S_C = 1.0 + 0.045 * Cp_bar;
+      const double S_H = 1.0 + 0.015 * Cp_bar * T;
+      const double R_T = -r[i] * R_C;
+      const double tL = dLp / (kL * S_L), tC = dCp / (kC * S_C), tH = dHp / (kH * S_H);
+      // |R_T| <= 2 makes the sum >= (|tC| - |tH|)^2 >= 0; the select only absorbs rounding (and passes
+      // NaN, which std::max(0.0, NaN) would turn into 0).
+      const double q = tL * tL + tC * tC + tH * tH + R_T * tC * tH;
+      out[o + i] = std::sqrt(q < 0.0 ? 0.0 : q);
+    }
+  }
+}
+
 double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double kH) {
-  // Sharma et al. 2005, step 1: C'_i, h'_i with a'_i = (1 + G) a_i.
-  // (Chromas as sqrt(a^2 + b^2): L*a*b* values are far from overflow, and hypot is slower.)
-  const double C1ab = std::sqrt(lab1.a * lab1.a + lab1.b * lab1.b), C2ab = std::sqrt(lab2.a * lab2.a + lab2.b * lab2.b);
-  const double Cab_bar = 0.5 * (C1ab + C2ab);
-  const double Cab2 = Cab_bar * Cab_bar, Cab7 = Cab2 * Cab2 * Cab2 * Cab_bar;
-  const double G = 0.5 * (1.0 - std::sqrt(Cab7 / (Cab7 + 6103515625.0)));  // 25^7
-  const double a1p = (1.0 + G) * lab1.a, a2p = (1.0 + G) * lab2.a;
-  const double C1p = std::sqrt(a1p * a1p + lab1.b * lab1.b), C2p = std::sqrt(a2p * a2p + lab2.b * lab2.b);
-  const double h1p = hue_deg(lab1.b, a1p), h2p = hue_deg(lab2.b, a2p);
-  // step 2: ΔL', ΔC', Δh' (0 when a chroma is 0), ΔH'.
-  const double dLp = lab2.L - lab1.L;
-  const double dCp = C2p - C1p;
-  const double CpProd = C1p * C2p;
-  double dhp = 0.0;
-  if (CpProd != 0.0) {
-    dhp = h2p - h1p;
-    if (dhp > 180.0) dhp -= 360.0;
-    else if (dhp < -180.0) dhp += 360.0;
-  }
-  const double dHp = 2.0 * std::sqrt(CpProd) * std::sin(0.5 * dhp * kDeg);
-  // step 3: means; h'_bar per the four cases of the paper (sum when a chroma is 0).
-  const double Lp_bar = 0.5 * (lab1.L + lab2.L);
-  const double Cp_bar = 0.5 * (C1p + C2p);
-  double hp_bar = h1p + h2p;
-  if (CpProd != 0.0) {
-    if (std::abs(h1p - h2p) <= 180.0) hp_bar = 0.5 * (h1p + h2p);
-    else if (h1p + h2p < 360.0) hp_bar = 0.5 * (h1p + h2p + 360.0);
-    else hp_bar = 0.5 * (h1p + h2p - 360.0);
-  }
-  // T = 1 - 0.17 cos(h - 30°) + 0.24 cos 2h + 0.32 cos(3h + 6°) - 0.20 cos(4h - 63°), from one cos/sin
-  // pair through the multiple-angle and angle-sum identities instead of four calls of cos.
-  const double c1 = std::cos(hp_bar * kDeg), s1 = std::sin(hp_bar * kDeg);
-  const double c2 = 2.0 * c1 * c1 - 1.0, s2 = 2.0 * s1 * c1;
-  const double c3 = c1 * (2.0 * c2 - 1.0), s3 = s1 * (2.0 * c2 + 1.0);  // 4c^3 - 3c, 3s - 4s^3
-  const double c4 = 2.0 * c2 * c2 - 1.0, s4 = 2.0 * s2 * c2;
-  constexpr double kCos30 = 0.86602540378443864676, kSin30 = 0.5;
-  constexpr double kCos6 = 0.99452189536827333692, kSin6 = 0.10452846326765347140;
-  constexpr double kCos63 = 0.45399049973954679156, kSin63 = 0.89100652418836786236;
-  const double T = 1.0 - 0.17 * (c1 * kCos30 + s1 * kSin30) + 0.24 * c2 + 0.32 * (c3 * kCos6 - s3 * kSin6) -
-                   0.20 * (c4 * kCos63 + s4 * kSin63);
-  const double hq = (hp_bar - 275.0) / 25.0;
-  const double dtheta = 30.0 * std::exp(-hq * hq);
-  const double Cp2 = Cp_bar * Cp_bar, Cp7 = Cp2 * Cp2 * Cp2 * Cp_bar;
-  const double R_C = 2.0 * std::sqrt(Cp7 / (Cp7 + 6103515625.0));
-  const double L50 = (Lp_bar - 50.0) * (Lp_bar - 50.0);
-  const double S_L = 1.0 + 0.015 * L50 / std::sqrt(20.0 + L50);
-  const double S_C = 1.0 + 0.045 * Cp_bar;
-  const double S_H = 1.0 + 0.015 * Cp_bar * T;
-  const double R_T = -std::sin(2.0 * dtheta * kDeg) * R_C;
-  const double tL = dLp / (kL * S_L), tC = dCp / (kC * S_C), tH = dHp / (kH * S_H);
-  // |R_T| <= 2 makes the sum >= (|tC| - |tH|)^2 >= 0; the clamp only absorbs rounding (and passes NaN,
-  // which std::max(0.0, NaN) would turn into 0).
-  const double sum = tL * tL + tC * tC + tH * tH + R_T * tC * tH;
-  return std::sqrt(sum < 0.0 ? 0.0 : sum);
+  double out;
+  ciede2000_n({&lab1.L, &lab1.a, &lab1.b}, {&lab2.L, &lab2.a, &lab2.b}, &out, 1, kL, kC, kH);
+  return out;
 }
 
 Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz) {
@@ -104,9 +138,21 @@ LabImage lab_image(const Image& xyz) {
 Image ciede2000_map(const Image& test_xyz, const LabImage& ref_lab) {
   require_reference_size(test_xyz, ref_lab.width, ref_lab.height, "ciede2000_map");
   Image m(test_xyz.width, test_xyz.height, 1);
-  parallel_for(long(m.pixel_count()), [&](long i) {
-    const float* t = test_xyz.data.data() + i * test_xyz.channels;
-    m.data[size_t(i)] = float(ciede2000(xyz_to_lab(t[0], t[1], t[2]), ref_lab.lab[size_t(i)]));
+  const long w = test_xyz.width;
+  parallel_for(long(test_xyz.height), [&](long y) {
+    // The row's pairs as planes, a block at a time, for ciede2000_n.
+    double p[6][kBlock], de[kBlock];
+    for (long x0 = 0; x0 < w; x0 += long(kBlock)) {
+      const std::size_t n = std::size_t(std::min(long(kBlock), w - x0));
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t k = std::size_t(y * w + x0) + i;
+        const float* t = test_xyz.data.data() + k * test_xyz.channels;
+        const Lab a = xyz_to_lab(t[0], t[1], t[2]), &b = ref_lab.lab[k];
+        p[0][i] = a.L, p[1][i] = a.a, p[2][i] = a.b, p[3][i] = b.L, p[4][i] = b.a, p[5][i] = b.b;
+      }
+      ciede2000_n({p[0], p[1], p[2]}, {p[3], p[4], p[5]}, de, n);
+      for (std::size_t i = 0; i < n; ++i) m.data[std::size_t(y * w + x0) + i] = float(de[i]);
+    }
   });
   return m;
 }

@@ -4,6 +4,7 @@
 // Y = 1 being that white. ΔE00 is display-referred: values of Y far above 1 give L* > 100 (no clamping).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -73,6 +74,17 @@ Lab xyz_to_lab(double X, double Y, double Z);
 
 // ΔE00 (Sharma et al. 2005, steps 1-3). Symmetric in its arguments.
 double ciede2000(const Lab& lab1, const Lab& lab2, double kL = 1.0, double kC = 1.0, double kH = 1.0);
+
+// The same for `n` pairs given as planes: out[i] = ciede2000(lab1[i], lab2[i]) (ciede2000 is this with
+// n = 1). The pixel loops' form: the paper's branches as selects, the hue terms' exp, sin, cos and
+// atan2 through glibc's vector math (metrics/vector_math.h), so the passes run two pairs at a time.
+struct LabPlanes {
+  const double* L;
+  const double* a;
+  const double* b;
+};
+void ciede2000_n(const LabPlanes& lab1, const LabPlanes& lab2, double* out, std::size_t n, double kL = 1.0,
+                 double kC = 1.0, double kH = 1.0);
 
 // Per-pixel ΔE00 between two CIE XYZ images (first three channels), 1 channel, same size.
 Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz);

@@ -51,20 +51,29 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   double sum = 0.0;
   for (int i = -r; i <= r; ++i) sum += k[size_t(i + r)] = std::exp(-0.5 * double(i * i) / (sigma_px * sigma_px));
   for (double& x : k) x /= sum;
+  // Both passes as sums of whole rows, tap after tap (s += k_i v_{x+i} for i = -r .. r, as a loop over
+  // taps per pixel would add them, so the result is the same to the bit): the inner loops run over
+  // contiguous x and vectorise. Edges clamped: the horizontal pass reads a copy of the row padded with
+  // its end values, the vertical one the clamped rows.
   std::vector<float> tmp(size_t(w) * h), out(size_t(w) * h);
   parallel_for(h, [&](long y) {
-    for (int x = 0; x < w; ++x) {
-      double s = 0.0;
-      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * xyz.at(std::clamp(x + i, 0, w - 1), int(y), 1);
-      tmp[size_t(y) * w + x] = float(s);
+    std::vector<double> row(size_t(w + 2 * r)), acc(size_t(w), 0.0);
+    for (int x = -r; x < w + r; ++x) row[size_t(x + r)] = xyz.at(std::clamp(x, 0, w - 1), int(y), 1);
+    for (int i = -r; i <= r; ++i) {
+      const double ki = k[size_t(i + r)];
+      const double* src = row.data() + (r + i);
+      for (int x = 0; x < w; ++x) acc[size_t(x)] += ki * src[x];
     }
+    for (int x = 0; x < w; ++x) tmp[size_t(y) * w + x] = float(acc[size_t(x)]);
   });
   parallel_for(h, [&](long y) {
-    for (int x = 0; x < w; ++x) {
-      double s = 0.0;
-      for (int i = -r; i <= r; ++i) s += k[size_t(i + r)] * tmp[size_t(std::clamp(int(y) + i, 0, h - 1)) * w + x];
-      out[size_t(y) * w + x] = float(s);
+    std::vector<double> acc(size_t(w), 0.0);
+    for (int i = -r; i <= r; ++i) {
+      const double ki = k[size_t(i + r)];
+      const float* src = tmp.data() + size_t(std::clamp(int(y) + i, 0, h - 1)) * w;
+      for (int x = 0; x < w; ++x) acc[size_t(x)] += ki * double(src[x]);
     }
+    for (int x = 0; x < w; ++x) out[size_t(y) * w + x] = float(acc[size_t(x)]);
   });
   return out;
 }

@@ -11,6 +11,10 @@
 // glibc's libmvec, vector ABI names (x86_64 "b" variants: SSE registers, 2 doubles or 4 floats).
 extern "C" __m128d _ZGVbN2v_log2(__m128d);
 extern "C" __m128d _ZGVbN2v_exp2(__m128d);
+extern "C" __m128d _ZGVbN2v_exp(__m128d);
+extern "C" __m128d _ZGVbN2v_sin(__m128d);
+extern "C" __m128d _ZGVbN2v_cos(__m128d);
+extern "C" __m128d _ZGVbN2vv_atan2(__m128d, __m128d);
 extern "C" __m128 _ZGVbN4v_log2f(__m128);
 extern "C" __m128 _ZGVbN4v_exp2f(__m128);
 #define GLINTLAB_LIBMVEC 1
@@ -42,6 +46,19 @@ void apply(const T* x, T* out, std::size_t n) {
     for (std::size_t k = 0; i + k < n; ++k) out[i + k] = res[k];
   }
 }
+
+// F(y[i], x[i]) over n pairs of doubles, two per call, the tail padded as above.
+template <__m128d (*F)(__m128d, __m128d)>
+void apply2(const double* y, const double* x, double* out, std::size_t n) {
+  std::size_t i = 0;
+  for (; i + 2 <= n; i += 2) _mm_storeu_pd(out + i, F(_mm_loadu_pd(y + i), _mm_loadu_pd(x + i)));
+  if (i < n) {
+    const double yy[2] = {y[i], y[i]}, xx[2] = {x[i], x[i]};
+    double res[2];
+    _mm_storeu_pd(res, F(_mm_loadu_pd(yy), _mm_loadu_pd(xx)));
+    out[i] = res[0];
+  }
+}
 #endif
 
 enum class Op { kLog2, kExp2 };
@@ -66,6 +83,26 @@ void log2_n(const double* x, double* out, std::size_t n) { elementwise(Op::kLog2
 void exp2_n(const double* x, double* out, std::size_t n) { elementwise(Op::kExp2, x, out, n); }
 void log2_n(const float* x, float* out, std::size_t n) { elementwise(Op::kLog2, x, out, n); }
 void exp2_n(const float* x, float* out, std::size_t n) { elementwise(Op::kExp2, x, out, n); }
+
+#ifdef GLINTLAB_LIBMVEC
+void exp_n(const double* x, double* out, std::size_t n) { apply<__m128d, double, _ZGVbN2v_exp>(x, out, n); }
+void sin_n(const double* x, double* out, std::size_t n) { apply<__m128d, double, _ZGVbN2v_sin>(x, out, n); }
+void cos_n(const double* x, double* out, std::size_t n) { apply<__m128d, double, _ZGVbN2v_cos>(x, out, n); }
+void atan2_n(const double* y, const double* x, double* out, std::size_t n) { apply2<_ZGVbN2vv_atan2>(y, x, out, n); }
+#else
+void exp_n(const double* x, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::exp(x[i]);
+}
+void sin_n(const double* x, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::sin(x[i]);
+}
+void cos_n(const double* x, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::cos(x[i]);
+}
+void atan2_n(const double* y, const double* x, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::atan2(y[i], x[i]);
+}
+#endif
 
 void pow_n(const double* x, double p, double* out, std::size_t n) {
   log2_n(x, out, n);  // 0 -> -inf, +inf -> +inf, negative and NaN -> NaN

@@ -14,6 +14,12 @@ namespace glintlab::metrics {
 
 void log2_n(const double* x, double* out, std::size_t n);  // log2(x[i]); in-place allowed
 void exp2_n(const double* x, double* out, std::size_t n);  // exp2(x[i]); in-place allowed
+// The functions of CIEDE2000's hue terms (metrics/ciede2000.cpp), likewise: exp, sin, cos and
+// atan2(y[i], x[i]) with atan2's signed zeros and quadrants. In-place allowed.
+void exp_n(const double* x, double* out, std::size_t n);
+void sin_n(const double* x, double* out, std::size_t n);
+void cos_n(const double* x, double* out, std::size_t n);
+void atan2_n(const double* y, const double* x, double* out, std::size_t n);
 
 // x[i]^p as exp2(p log2 x[i]) for p > 0: 0 -> 0, +inf -> +inf, NaN and negative x -> NaN.
 // In-place allowed.

@@ -10,4 +10,6 @@ void tune_allocator_for_rendering() {
   mallopt(M_TOP_PAD, 256 << 20);       // grow the heap in large steps
 }
 
+void share_one_heap_between_threads() { mallopt(M_ARENA_MAX, 1); }
+
 }  // namespace glintlab

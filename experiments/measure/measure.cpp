@@ -1,5 +1,6 @@
 #include "experiments/measure/measure.h"
 
+#include "core/util/allocator.h"
 #include "core/util/content_hash.h"
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
@@ -198,6 +199,7 @@ nlohmann::json num_or_null(double x) { return std::isfinite(x) ? nlohmann::json(
 }  // namespace
 
 int measure_sequences(const MeasureOptions& o, std::ostream& log) {
+  share_one_heap_between_threads();  // frames are decoded on one thread and freed on another
   const metrics::ColorManager cm = load_color_manager(o.ocio_config);
   Plan p;
   ExperimentSpec spec;

@@ -260,11 +260,12 @@ std::vector<std::string> colour_channels(const FrameHeader& header, const std::s
                     (layer.empty() ? "; name a layer after ':' (e.g. 'shots/####.exr:ViewLayer.Combined')" : ""));
 }
 
-Image read_frame_channels(const std::string& path, const std::vector<std::string>& channels) {
+Image read_frame_channels(const std::string& path, const std::vector<std::string>& channels, int image_channels) {
   const FrameHeader h = read_frame_header(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw ConfigError("'" + path + "': " + OIIO::geterror());
-  Image out(h.width, h.height, int(channels.size()));
+  const int nc = std::max(image_channels, int(channels.size()));
+  Image out(h.width, h.height, nc, nc > int(channels.size()) ? 1.0f : 0.0f);
   std::vector<bool> done(channels.size(), false);
   for (int part = 0; part < kMaxParts && in->seek_subimage(part, 0); ++part) {
     const OIIO::ImageSpec& spec = in->spec();
@@ -275,22 +276,37 @@ Image read_frame_channels(const std::string& path, const std::vector<std::string
       for (int c = 0; c < spec.nchannels && !done[k]; ++c)
         if (spec.channel_name(c) == channels[k]) index[k] = c, any = true;
     if (!any) continue;
-    // One read of the contiguous channel range the part needs.
+    // One read of the contiguous channel range the part needs: straight into the image where the
+    // channels it gives are the image's next ones in the same order (R, G, B; X, Y, Z, W), else
+    // through a buffer.
     int lo = spec.nchannels, hi = 0;
     for (int c : index)
       if (c >= 0) lo = std::min(lo, c), hi = std::max(hi, c + 1);
     const int n = hi - lo;
-    std::vector<float> raw(size_t(h.width) * h.height * size_t(n));
-    if (!in->read_image(part, 0, lo, hi, OIIO::TypeDesc::FLOAT, raw.data())) {
+    size_t first = 0;
+    while (index[first] < 0) ++first;
+    bool direct = first + size_t(n) <= channels.size();
+    for (size_t k = 0; k < channels.size(); ++k)
+      direct = direct && (k >= first && k < first + size_t(n) ? index[k] == lo + int(k - first) : index[k] < 0);
+    auto read = [&](float* data, int stride_channels) {
+      if (in->read_image(part, 0, lo, hi, OIIO::TypeDesc::FLOAT, data, OIIO::stride_t(sizeof(float)) * stride_channels))
+        return;
       std::string e = in->geterror();
       throw ConfigError("'" + path + "': cannot read its pixels (" + (e.empty() ? "read failed" : e) +
                         "; a truncated or damaged file?)");
+    };
+    if (direct) {
+      read(out.data.data() + first, nc);
+      for (size_t k = first; k < first + size_t(n); ++k) done[k] = true;
+      continue;
     }
+    std::vector<float> raw(size_t(h.width) * h.height * size_t(n));
+    read(raw.data(), n);
     const size_t px = out.pixel_count();
     for (size_t k = 0; k < channels.size(); ++k) {
       if (index[k] < 0) continue;
       const int c = index[k] - lo;
-      for (size_t i = 0; i < px; ++i) out.data[i * channels.size() + k] = raw[i * size_t(n) + size_t(c)];
+      for (size_t i = 0; i < px; ++i) out.data[i * size_t(nc) + k] = raw[i * size_t(n) + size_t(c)];
       done[k] = true;
     }
   }
@@ -362,16 +378,10 @@ FrameFiles open_colour_sequence(const std::string& seq, const std::vector<int>& 
 ColourFrame read_colour_frame(const FrameFiles& f, size_t index, const metrics::ColorManager& cm,
                               const std::string& to_space) {
   const auto t0 = std::chrono::steady_clock::now();
-  const Image rgb = read_frame_channels(f.paths.at(index), f.channels);
   ColourFrame out;
-  out.scan = metrics::scan_pixels(rgb, 3);
-  out.image = Image(rgb.width, rgb.height, 4, 1.0f);
-  for (size_t i = 0; i < rgb.pixel_count(); ++i)
-    for (int c = 0; c < 3; ++c) out.image.data[4 * i + size_t(c)] = rgb.data[3 * i + size_t(c)];
-  if (to_space == metrics::kXyzD65Space)
-    out.image = cm.to_xyz_d65(out.image, f.space);
-  else
-    cm.convert(out.image, f.space, to_space);
+  out.image = read_frame_channels(f.paths.at(index), f.channels, 4);  // R, G, B and alpha 1
+  out.scan = metrics::scan_pixels(out.image, 3);
+  cm.convert(out.image, f.space, to_space);
   out.read_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

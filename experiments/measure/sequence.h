@@ -76,9 +76,11 @@ std::vector<std::string> find_channels(const FrameHeader& header, const std::str
 std::string channel_list(const FrameHeader& header);
 
 // Reads the named channels of a frame (any part of a multi-part file) as a
-// float image with channels in the given order. Throws ConfigError / IoError
-// naming the file.
-Image read_frame_channels(const std::string& path, const std::vector<std::string>& channels);
+// float image with channels in the given order; `image_channels` more than
+// the names gives an image that wide, the channels after the names 1 (an
+// alpha). Throws ConfigError / IoError naming the file.
+Image read_frame_channels(const std::string& path, const std::vector<std::string>& channels,
+                          int image_channels = 0);
 
 // A colour frame: R, G, B of the layer (grey Y copied to all three; alpha 1);
 // the error lists the channels the file has when none fit.

@@ -121,10 +121,12 @@ core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int 
 
 // A sequence a renderer might write: a smooth texture moving 1.5 px right and 0.5 px down a frame,
 // with sparse bright sparkles that the test redraws at random every frame (the flicker to find).
-void measure_section(const metrics::ColorManager& cm, int w, int h, int frames, bool half) {
+// `keep`: write the sequences into this folder (its `half` or `float` sub-folder) and leave them there,
+// to profile `glintlab measure` on them alone; else a temporary folder, removed afterwards.
+void measure_section(const metrics::ColorManager& cm, int w, int h, int frames, bool half, const std::string& keep) {
   namespace fs = std::filesystem;
   char tmpl[] = "/tmp/glintlab_bench_measure_XXXXXX";
-  const fs::path dir = ::mkdtemp(tmpl);
+  const fs::path dir = keep.empty() ? fs::path(::mkdtemp(tmpl)) : fs::path(keep) / (half ? "half" : "float");
   for (const char* sub : {"ref", "test", "motion"}) fs::create_directories(dir / sub);
   const double vx = 1.5, vy = 0.5;
   std::mt19937 rng(7);
@@ -181,7 +183,8 @@ void measure_section(const metrics::ColorManager& cm, int w, int h, int frames, 
   std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "all metrics of a frame", mean(s["metric_ms_per_frame"]),
               1000.0 / mean(s["metric_ms_per_frame"]));
   std::error_code ec;
-  fs::remove_all(dir, ec);
+  if (keep.empty()) fs::remove_all(dir, ec);
+  else fs::remove_all(dir / "out", ec);
 }
 
 int bench(int argc, char** argv) {
@@ -191,6 +194,7 @@ int bench(int argc, char** argv) {
   std::string only;
   std::vector<int> size;
   bool smoke = false;
+  std::string keep;
   CLI::App app("glintlab_bench: throughput of the renderer and the metrics on a Vulkan device (GPU timestamps)");
   app.add_option("--device", device, "Vulkan device: index or part of its name (default: lavapipe)");
   app.add_option("--frames", frames, "timed frames per case (median; default 10)")->check(CLI::Range(1, 100000));
@@ -200,6 +204,8 @@ int bench(int argc, char** argv) {
       ->check(CLI::Range(1, 16384));
   app.add_option("--only", only, "run one section")
       ->check(CLI::IsMember({"surface", "terrain", "reference", "taa", "metrics", "measure"}));
+  app.add_option("--measure-files", keep, "the measure section writes its sequences into DIR/float and DIR/half "
+                                          "and keeps them (for profiling `glintlab measure` alone)");
   app.add_flag("--smoke", smoke, "every section once at tiny sizes, to check that the bench runs (figures "
                                  "meaningless)");
   CLI11_PARSE(app, argc, argv);
@@ -466,7 +472,7 @@ int bench(int argc, char** argv) {
   // ---- 5. measure: files in, metrics out
   if (section("measure"))
     for (bool half : {false, true})
-      measure_section(cm, smoke ? 64 : 1920, smoke ? 36 : 1080, smoke ? 3 : std::max(4, frames), half);
+      measure_section(cm, smoke ? 64 : 1920, smoke ? 36 : 1080, smoke ? 3 : std::max(4, frames), half, keep);
   if (ctx.validation_enabled() && ctx.validation_message_count() > 0) {
     std::fprintf(stderr, "error: the Vulkan validation layer reported %zu message(s); first: %s\n",
                  ctx.validation_message_count(), ctx.validation_messages().front().c_str());

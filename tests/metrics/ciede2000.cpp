@@ -1,10 +1,12 @@
 // CIEDE2000 against the published test data of Sharma, Wu & Dalal 2005 (Table 1) and CIELAB basics.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "metrics/ciede2000.h"
 
@@ -157,4 +159,100 @@ TEST(Ciede2000, MapMatchesScalarAndChecksSize) {
     }
   EXPECT_THROW(ciede2000_map(t, Image(2, 2, 4)), std::invalid_argument);
   EXPECT_THROW(ciede2000_map(Image(3, 2, 2), Image(3, 2, 2)), std::invalid_argument);
+}
+
+namespace {
+// The paper's steps as written (four cosines in T, libm's functions, branches), the oracle for the
+// array form ciede2000_n, which computes the same with selects, trigonometric identities and libmvec.
+double ciede2000_as_written(const Lab& x, const Lab& y) {
+  constexpr double deg = 3.14159265358979323846 / 180.0;
+  const double Cbar = 0.5 * (std::hypot(x.a, x.b) + std::hypot(y.a, y.b));
+  const double G = 0.5 * (1.0 - std::sqrt(std::pow(Cbar, 7) / (std::pow(Cbar, 7) + std::pow(25.0, 7))));
+  const double a1 = (1 + G) * x.a, a2 = (1 + G) * y.a;
+  const double C1 = std::hypot(a1, x.b), C2 = std::hypot(a2, y.b);
+  auto hue = [&](double b, double a) {
+    if (b == 0 && a == 0) return 0.0;
+    const double h = std::atan2(b, a) / deg;
+    return h < 0 ? h + 360 : h;
+  };
+  const double h1 = hue(x.b, a1), h2 = hue(y.b, a2);
+  double dh = 0;
+  if (C1 * C2 != 0) {
+    dh = h2 - h1;
+    if (dh > 180) dh -= 360;
+    if (dh < -180) dh += 360;
+  }
+  const double L = (x.L + y.L) / 2, C = (C1 + C2) / 2;
+  double H = h1 + h2;
+  if (C1 * C2 != 0) {
+    if (std::abs(h1 - h2) <= 180) H = (h1 + h2) / 2;
+    else if (h1 + h2 < 360) H = (h1 + h2 + 360) / 2;
+    else H = (h1 + h2 - 360) / 2;
+    if (a1 * y.b == x.b * a2 && a1 * a2 + x.b * y.b < 0) {  // opposite hues: the tie |h1 - h2| = 180 exactly
+      dh = h1 < 180 ? 180 : -180;
+      H = h1 < 180 ? h1 + 90 : h1 - 90;
+    }
+  }
+  const double dH = 2 * std::sqrt(C1 * C2) * std::sin(dh * deg / 2);
+  const double T = 1 - 0.17 * std::cos((H - 30) * deg) + 0.24 * std::cos(2 * H * deg) +
+                   0.32 * std::cos((3 * H + 6) * deg) - 0.20 * std::cos((4 * H - 63) * deg);
+  const double dtheta = 30 * std::exp(-std::pow((H - 275) / 25, 2));
+  const double RC = 2 * std::sqrt(std::pow(C, 7) / (std::pow(C, 7) + std::pow(25.0, 7)));
+  const double SL = 1 + 0.015 * std::pow(L - 50, 2) / std::sqrt(20 + std::pow(L - 50, 2));
+  const double SC = 1 + 0.045 * C, SH = 1 + 0.015 * C * T, RT = -std::sin(2 * dtheta * deg) * RC;
+  const double tL = (y.L - x.L) / SL, tC = (C2 - C1) / SC, tH = dH / SH;
+  const double q = tL * tL + tC * tC + tH * tH + RT * tC * tH;
+  return std::sqrt(q < 0 ? 0.0 : q);  // NaN stays NaN
+}
+}  // namespace
+
+TEST(Ciede2000, ArrayFormIsThePaperToRoundingAcrossBlocksAndEdges) {
+  // Random pairs over the whole L*a*b* range, the Sharma pairs (hue wrap-around, achromatic sides),
+  // exact hue quadrant edges (a or b = 0 of either sign), identical pairs and NaN; 1000 pairs so the
+  // array form runs several blocks and a partial one.
+  std::vector<Lab> x, y;
+  for (const SharmaPair& p : kSharma) {
+    x.push_back({p.L1, p.a1, p.b1});
+    y.push_back({p.L2, p.a2, p.b2});
+  }
+  for (double a : {0.0, -0.0, 3.0, -3.0})
+    for (double b : {0.0, -0.0, 2.0, -2.0}) {
+      x.push_back({40.0, a, b});
+      y.push_back({45.0, -b, a});
+    }
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> L(0.0, 120.0), ab(-128.0, 128.0), near(-1e-3, 1e-3);
+  for (int k = 0; k < 16; ++k) {  // mirror images: hues exactly 180° apart, the paper's "<= 180" tie
+    x.push_back({L(rng), ab(rng), ab(rng)});
+    y.push_back({L(rng), -x.back().a, -x.back().b});
+  }
+  while (x.size() < 1000) {
+    const Lab p{L(rng), ab(rng), ab(rng)};
+    x.push_back(p);
+    // a neighbour (the small differences the metric mostly sees) or an unrelated colour
+    y.push_back(x.size() % 2 ? Lab{p.L + near(rng), p.a + near(rng), p.b + near(rng)} : Lab{L(rng), ab(rng), ab(rng)});
+  }
+  x[500] = y[500];
+  x[700].a = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> planes[6];
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    planes[0].push_back(x[i].L), planes[1].push_back(x[i].a), planes[2].push_back(x[i].b);
+    planes[3].push_back(y[i].L), planes[4].push_back(y[i].a), planes[5].push_back(y[i].b);
+  }
+  std::vector<double> out(x.size());
+  ciede2000_n({planes[0].data(), planes[1].data(), planes[2].data()},
+              {planes[3].data(), planes[4].data(), planes[5].data()}, out.data(), out.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double want = ciede2000_as_written(x[i], y[i]);
+    if (std::isnan(want)) {
+      EXPECT_TRUE(std::isnan(out[i])) << i;
+      continue;
+    }
+    worst = std::max(worst, std::abs(out[i] - want) / std::max(want, 1e-2));
+    EXPECT_EQ(out[i], ciede2000(x[i], y[i])) << i;  // the scalar form is the array form
+  }
+  EXPECT_TRUE(std::isnan(out[700]));
+  EXPECT_EQ(out[500], 0.0);
+  EXPECT_LT(worst, 1e-9) << "largest difference relative to max(ΔE00, 0.01)";
 }
