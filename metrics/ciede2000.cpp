@@ -20,9 +20,43 @@ constexpr double k25To7 = 6103515625.0;  // 25^7
 constexpr std::size_t kBlock = 256;
 }  // namespace
 
+namespace {
+// L*a*b* from the white-relative values t = X / X_w, Y / Y_w, Z / Z_w of n <= kBlock pixels (the t
+// planes are overwritten).
+void lab_of_ratios(double* tx, double* ty, double* tz, std::size_t n, double* L, double* a, double* b) {
+  double rx[kBlock], ry[kBlock], rz[kBlock];
+  cbrt_n(tx, rx, n);
+  cbrt_n(ty, ry, n);
+  cbrt_n(tz, rz, n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double fx = lab_companding(tx[i], rx[i]), fy = lab_companding(ty[i], ry[i]);
+    const double fz = lab_companding(tz[i], rz[i]);
+    L[i] = 116.0 * fy - 16.0;
+    a[i] = 500.0 * (fx - fy);
+    b[i] = 200.0 * (fy - fz);
+  }
+}
+}  // namespace
+
+void xyz_to_lab_n(const float* xyz, std::size_t stride, std::size_t count, double* L, double* a, double* b) {
+  double tx[kBlock], ty[kBlock], tz[kBlock];
+  for (std::size_t o = 0; o < count; o += kBlock) {
+    const std::size_t n = std::min(kBlock, count - o);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float* p = xyz + (o + i) * stride;
+      tx[i] = p[0] / kLabWhiteX;
+      ty[i] = p[1] / kLabWhiteY;
+      tz[i] = p[2] / kLabWhiteZ;
+    }
+    lab_of_ratios(tx, ty, tz, n, L + o, a + o, b + o);
+  }
+}
+
 Lab xyz_to_lab(double X, double Y, double Z) {
-  const double fx = lab_f(X / kLabWhiteX), fy = lab_f(Y / kLabWhiteY), fz = lab_f(Z / kLabWhiteZ);
-  return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
+  double tx = X / kLabWhiteX, ty = Y / kLabWhiteY, tz = Z / kLabWhiteZ;
+  Lab out;
+  lab_of_ratios(&tx, &ty, &tz, 1, &out.L, &out.a, &out.b);
+  return out;
 }
 
 // Sharma et al. 2005, steps 1-3, written as element-wise passes over planes of up to kBlock pairs:
@@ -127,10 +161,11 @@ Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz) {
 
 LabImage lab_image(const Image& xyz) {
   if (xyz.channels < 3) throw std::invalid_argument("lab_image: the image needs >= 3 channels (X, Y, Z)");
-  LabImage out{xyz.width, xyz.height, std::vector<Lab>(xyz.pixel_count())};
-  parallel_for(long(out.lab.size()), [&](long i) {
-    const float* p = xyz.data.data() + i * xyz.channels;
-    out.lab[size_t(i)] = xyz_to_lab(p[0], p[1], p[2]);
+  const std::size_t n = xyz.pixel_count(), w = std::size_t(xyz.width);
+  LabImage out{xyz.width, xyz.height, std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
+  parallel_for(long(xyz.height), [&](long y) {
+    const std::size_t o = std::size_t(y) * w;
+    xyz_to_lab_n(xyz.data.data() + o * xyz.channels, std::size_t(xyz.channels), w, &out.L[o], &out.a[o], &out.b[o]);
   });
   return out;
 }
@@ -138,20 +173,15 @@ LabImage lab_image(const Image& xyz) {
 Image ciede2000_map(const Image& test_xyz, const LabImage& ref_lab) {
   require_reference_size(test_xyz, ref_lab.width, ref_lab.height, "ciede2000_map");
   Image m(test_xyz.width, test_xyz.height, 1);
-  const long w = test_xyz.width;
+  const std::size_t w = std::size_t(test_xyz.width), nc = std::size_t(test_xyz.channels);
   parallel_for(long(test_xyz.height), [&](long y) {
-    // The row's pairs as planes, a block at a time, for ciede2000_n.
-    double p[6][kBlock], de[kBlock];
-    for (long x0 = 0; x0 < w; x0 += long(kBlock)) {
-      const std::size_t n = std::size_t(std::min(long(kBlock), w - x0));
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t k = std::size_t(y * w + x0) + i;
-        const float* t = test_xyz.data.data() + k * test_xyz.channels;
-        const Lab a = xyz_to_lab(t[0], t[1], t[2]), &b = ref_lab.lab[k];
-        p[0][i] = a.L, p[1][i] = a.a, p[2][i] = a.b, p[3][i] = b.L, p[4][i] = b.a, p[5][i] = b.b;
-      }
-      ciede2000_n({p[0], p[1], p[2]}, {p[3], p[4], p[5]}, de, n);
-      for (std::size_t i = 0; i < n; ++i) m.data[std::size_t(y * w + x0) + i] = float(de[i]);
+    // The row a block at a time: the test's L*a*b* as planes beside the reference's, then ΔE00.
+    double L[kBlock], a[kBlock], b[kBlock], de[kBlock];
+    for (std::size_t x0 = 0; x0 < w; x0 += kBlock) {
+      const std::size_t n = std::min(kBlock, w - x0), k = std::size_t(y) * w + x0;
+      xyz_to_lab_n(test_xyz.data.data() + k * nc, nc, n, L, a, b);
+      ciede2000_n({L, a, b}, {&ref_lab.L[k], &ref_lab.a[k], &ref_lab.b[k]}, de, n);
+      for (std::size_t i = 0; i < n; ++i) m.data[k + i] = float(de[i]);
     }
   });
   return m;

@@ -15,6 +15,7 @@ extern "C" __m128d _ZGVbN2v_exp(__m128d);
 extern "C" __m128d _ZGVbN2v_sin(__m128d);
 extern "C" __m128d _ZGVbN2v_cos(__m128d);
 extern "C" __m128d _ZGVbN2vv_atan2(__m128d, __m128d);
+extern "C" __m128d _ZGVbN2v_cbrt(__m128d);
 extern "C" __m128 _ZGVbN4v_log2f(__m128);
 extern "C" __m128 _ZGVbN4v_exp2f(__m128);
 #define GLINTLAB_LIBMVEC 1
@@ -89,6 +90,7 @@ void exp_n(const double* x, double* out, std::size_t n) { apply<__m128d, double,
 void sin_n(const double* x, double* out, std::size_t n) { apply<__m128d, double, _ZGVbN2v_sin>(x, out, n); }
 void cos_n(const double* x, double* out, std::size_t n) { apply<__m128d, double, _ZGVbN2v_cos>(x, out, n); }
 void atan2_n(const double* y, const double* x, double* out, std::size_t n) { apply2<_ZGVbN2vv_atan2>(y, x, out, n); }
+void cbrt_n(const double* x, double* out, std::size_t n) { apply<__m128d, double, _ZGVbN2v_cbrt>(x, out, n); }
 #else
 void exp_n(const double* x, double* out, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) out[i] = std::exp(x[i]);
@@ -101,6 +103,9 @@ void cos_n(const double* x, double* out, std::size_t n) {
 }
 void atan2_n(const double* y, const double* x, double* out, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) out[i] = std::atan2(y[i], x[i]);
+}
+void cbrt_n(const double* x, double* out, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::cbrt(x[i]);
 }
 #endif
 

@@ -20,6 +20,8 @@ void exp_n(const double* x, double* out, std::size_t n);
 void sin_n(const double* x, double* out, std::size_t n);
 void cos_n(const double* x, double* out, std::size_t n);
 void atan2_n(const double* y, const double* x, double* out, std::size_t n);
+// cbrt(x[i]) (negative x too: the cube root of -x is minus that of x), for L*a*b* (ciede2000.cpp).
+void cbrt_n(const double* x, double* out, std::size_t n);
 
 // x[i]^p as exp2(p log2 x[i]) for p > 0: 0 -> 0, +inf -> +inf, NaN and negative x -> NaN.
 // In-place allowed.
