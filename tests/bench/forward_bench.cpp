@@ -43,6 +43,7 @@
 #include "core/scene/mesh.h"
 #include "core/vk/vk_context.h"
 #include "experiments/measure/measure.h"
+#include "metrics/vector_math.h"
 #include "experiments/runner/variant_factory.h"
 #include "metrics/color/image_io.h"
 #include "experiments/spec/experiment_spec.h"
@@ -172,8 +173,10 @@ void measure_section(const metrics::ColorManager& cm, int w, int h, int frames, 
   const auto mean = [](const nlohmann::json& st) { return st.value("mean", 0.0); };
   std::printf("\nmeasure: %d frames of one %dx%d test sequence against its reference (%s RGBA EXR, ZIP; "
               "motion float RGBA in the pixels convention), deltaE2000 + flicker + the run's other per-frame "
-              "metrics, %ld metric threads: %.2f s wall, %.2f frames/s (start-up, headers and hashing included)\n",
-              frames, w, h, half ? "half" : "float", metrics::metric_threads(), wall_s, frames / wall_s);
+              "metrics, %ld metric threads, vector math %s: %.2f s wall, %.2f frames/s (start-up, headers and hashing "
+              "included)\n",
+              frames, w, h, half ? "half" : "float", metrics::metric_threads(), metrics::vector_math_isa(), wall_s,
+              frames / wall_s);
   std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a test frame", mean(s["variants"][0]["wall_ms"]),
               1000.0 / mean(s["variants"][0]["wall_ms"]));
   std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a reference frame", mean(s["references"][0]["wall_ms"]),

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "metrics/ciede2000.h"
@@ -51,6 +52,51 @@ TEST(VectorMath, Log2AndExp2WithinFourUlpOfLibm) {
       EXPECT_LE(ulps(exf[i], std::exp2(pf[i])), 4.0) << pf[i];
     }
   }
+}
+
+TEST(VectorMath, EveryFunctionWithinFourUlpOfLibmInEveryVariant) {
+  // Each variant this CPU can run (SSE always, AVX2 where the CPU has it), lengths with partial vectors.
+  const std::string chosen = vector_math_isa();
+  std::vector<std::string> isas;
+  for (const char* isa : {"sse", "avx2", "libm"})
+    if (use_vector_math_isa(isa)) isas.push_back(isa);
+  ASSERT_FALSE(isas.empty());
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> angle(-20.0, 20.0), e(-30.0, 30.0), s(-1.0, 1.0);
+  for (const std::string& isa : isas) {
+    ASSERT_TRUE(use_vector_math_isa(isa));
+    EXPECT_EQ(std::string(vector_math_isa()), isa);
+    for (std::size_t n : {std::size_t(1), std::size_t(3), std::size_t(5), std::size_t(7), std::size_t(999)}) {
+      std::vector<double> x(n), y(n), c(n), out(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        x[i] = angle(rng);
+        y[i] = s(rng) * std::exp2(e(rng) / 3.0);
+        c[i] = (i % 2 ? -1.0 : 1.0) * std::exp2(e(rng));
+      }
+      sin_n(x.data(), out.data(), n);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_LE(ulps(out[i], std::sin(x[i])), 4.0) << isa << " sin " << x[i];
+      cos_n(x.data(), out.data(), n);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_LE(ulps(out[i], std::cos(x[i])), 4.0) << isa << " cos " << x[i];
+      exp_n(x.data(), out.data(), n);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_LE(ulps(out[i], std::exp(x[i])), 4.0) << isa << " exp " << x[i];
+      cbrt_n(c.data(), out.data(), n);  // negative values too
+      for (std::size_t i = 0; i < n; ++i) EXPECT_LE(ulps(out[i], std::cbrt(c[i])), 4.0) << isa << " cbrt " << c[i];
+      atan2_n(y.data(), x.data(), out.data(), n);
+      for (std::size_t i = 0; i < n; ++i)
+        EXPECT_LE(ulps(out[i], std::atan2(y[i], x[i])), 4.0) << isa << " atan2 " << y[i] << ", " << x[i];
+      std::vector<float> xf(n), lf(n);
+      for (std::size_t i = 0; i < n; ++i) xf[i] = float(std::exp2(e(rng)));
+      log2_n(xf.data(), lf.data(), n);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_LE(ulps(lf[i], std::log2(xf[i])), 4.0) << isa << " log2f " << xf[i];
+    }
+    // atan2's signed zeros and quadrants, exactly.
+    const double z[] = {0.0, -0.0, 0.0, -0.0}, w[] = {1.0, 1.0, -1.0, -1.0};
+    double r[4];
+    atan2_n(z, w, r, 4);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(r[k], std::atan2(z[k], w[k])) << isa << " atan2 edge " << k;
+    EXPECT_TRUE(std::signbit(r[1]));
+  }
+  ASSERT_TRUE(use_vector_math_isa(chosen));
 }
 
 TEST(VectorMath, PowersAndTheirEdges) {
