@@ -21,9 +21,9 @@ constexpr std::size_t kBlock = 256;
 }  // namespace
 
 namespace {
-// L*a*b* from the white-relative values t = X / X_w, Y / Y_w, Z / Z_w of n <= kBlock pixels (the t
-// planes are overwritten).
-void lab_of_ratios(double* tx, double* ty, double* tz, std::size_t n, double* L, double* a, double* b) {
+// L*a*b* from the white-relative values t = X / X_w, Y / Y_w, Z / Z_w of n <= kBlock pixels.
+void lab_of_ratios(const double* tx, const double* ty, const double* tz, std::size_t n, double* L, double* a,
+                   double* b) {
   double rx[kBlock], ry[kBlock], rz[kBlock];
   cbrt_n(tx, rx, n);
   cbrt_n(ty, ry, n);
@@ -53,7 +53,7 @@ void xyz_to_lab_n(const float* xyz, std::size_t stride, std::size_t count, doubl
 }
 
 Lab xyz_to_lab(double X, double Y, double Z) {
-  double tx = X / kLabWhiteX, ty = Y / kLabWhiteY, tz = Z / kLabWhiteZ;
+  const double tx = X / kLabWhiteX, ty = Y / kLabWhiteY, tz = Z / kLabWhiteZ;
   Lab out;
   lab_of_ratios(&tx, &ty, &tz, 1, &out.L, &out.a, &out.b);
   return out;
