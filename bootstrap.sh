@@ -6,7 +6,7 @@ PKGS=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools spirv-tools
   libglm-dev
-  libopenimageio-dev openimageio-tools
+  libopenimageio-dev openimageio-tools libopenexr-dev libdeflate-dev  # EXR sequences' fast path (experiments/measure/)
   libopencolorio-dev opencolorio-tools
   libgtest-dev
   nlohmann-json3-dev libcli11-dev libxxhash-dev libopencv-video-dev ninja-build

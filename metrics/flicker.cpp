@@ -26,15 +26,16 @@ double perceptual_luminance(double Y, double reference_nits) {
 }
 
 namespace {
-// perceptual_luminance of every value of a float plane, in rows of work spread over the threads.
-std::vector<double> perceptual_luminance_plane(const std::vector<float>& y, int w, int h) {
-  std::vector<double> pq(y.size());
-  parallel_for(h, [&](long row) {
+// Y (channel 1) of an XYZ image and its perceptual_luminance, in rows of work spread over the threads.
+void luminance_planes(const Image& xyz, std::vector<float>& y, std::vector<double>& pq) {
+  const std::size_t w = std::size_t(xyz.width), n = xyz.pixel_count();
+  y.resize(n);
+  pq.resize(n);
+  parallel_for(xyz.height, [&](long row) {
     const std::size_t o = std::size_t(row) * w;
-    std::vector<double> v(y.begin() + o, y.begin() + o + w);
-    perceptual_luminance_n(v.data(), pq.data() + o, std::size_t(w));
+    for (std::size_t i = o; i < o + w; ++i) pq[i] = y[i] = xyz.data[i * std::size_t(xyz.channels) + 1];
+    perceptual_luminance_n(pq.data() + o, pq.data() + o, w);
   });
-  return pq;
 }
 }  // namespace
 
@@ -78,47 +79,55 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   return out;
 }
 
-std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>& prev_distance, double tolerance) {
+namespace {
+// reproject's work for row y, into out[0 .. width).
+void reproject_row(const Image& motion, const std::vector<float>& prev_distance, double tolerance, int y,
+                   Reprojected* out) {
   const int w = motion.width, h = motion.height;
+  for (int x = 0; x < w; ++x) {
+    Reprojected& r = out[x];
+    r = Reprojected{};
+    const float* m = motion.px(x, y);
+    if (!(m[2] > 0.0f)) {
+      r.state = Reprojected::kBackground;
+      continue;
+    }
+    // The centre of pixel p sat at (x + 0.5, y + 0.5) - v in frame t-1; in texel-index
+    // coordinates (texel centres at integers) that is (x, y) - v.
+    const double qx = x - double(m[0]), qy = y - double(m[1]);
+    const double d_prev = m[3];
+    bool ok = d_prev > 0.0 && std::isfinite(qx) && std::isfinite(qy) && qx >= 0.0 && qy >= 0.0 &&
+              qx <= double(w - 1) && qy <= double(h - 1);
+    if (ok) {
+      const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
+      const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+      const double fx = qx - x0, fy = qy - y0;
+      const int tx[4] = {x0, x1, x0, x1}, ty[4] = {y0, y0, y1, y1};
+      const double tw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+      double d_interp = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        r.idx[k] = unsigned(ty[k]) * unsigned(w) + unsigned(tx[k]);
+        r.weight[k] = float(tw[k]);
+        // A tap that saw no surface, or a surface far off the point's distance
+        // (another object across a silhouette), contaminates the sample.
+        if (tw[k] > 0.0 && !(std::abs(prev_distance[r.idx[k]] - d_prev) <= kSilhouetteTolerance * d_prev)) ok = false;
+        d_interp += tw[k] * prev_distance[r.idx[k]];
+      }
+      // On a smooth surface the interpolated distance is the point's; across a
+      // silhouette it mixes the two surfaces and misses it.
+      ok = ok && std::abs(d_interp - d_prev) <= tolerance * d_prev;
+    }
+    r.state = ok ? Reprojected::kValid : Reprojected::kDisoccluded;
+  }
+}
+}  // namespace
+
+std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>& prev_distance, double tolerance) {
   if (prev_distance.size() != motion.pixel_count())
     throw std::invalid_argument("reproject: the previous distances and the motion image differ in size");
   std::vector<Reprojected> out(motion.pixel_count());
-  parallel_for(h, [&](long yl) {
-    const int y = int(yl);
-    for (int x = 0; x < w; ++x) {
-      Reprojected& r = out[std::size_t(y) * w + x];
-      const float* m = motion.px(x, y);
-      if (!(m[2] > 0.0f)) {
-        r.state = Reprojected::kBackground;
-        continue;
-      }
-      // The centre of pixel p sat at (x + 0.5, y + 0.5) - v in frame t-1; in texel-index
-      // coordinates (texel centres at integers) that is (x, y) - v.
-      const double qx = x - double(m[0]), qy = y - double(m[1]);
-      const double d_prev = m[3];
-      bool ok = d_prev > 0.0 && std::isfinite(qx) && std::isfinite(qy) && qx >= 0.0 && qy >= 0.0 &&
-                qx <= double(w - 1) && qy <= double(h - 1);
-      if (ok) {
-        const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
-        const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
-        const double fx = qx - x0, fy = qy - y0;
-        const int tx[4] = {x0, x1, x0, x1}, ty[4] = {y0, y0, y1, y1};
-        const double tw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-        double d_interp = 0.0;
-        for (int k = 0; k < 4; ++k) {
-          r.idx[k] = unsigned(ty[k]) * unsigned(w) + unsigned(tx[k]);
-          r.weight[k] = float(tw[k]);
-          // A tap that saw no surface, or a surface far off the point's distance
-          // (another object across a silhouette), contaminates the sample.
-          if (tw[k] > 0.0 && !(std::abs(prev_distance[r.idx[k]] - d_prev) <= kSilhouetteTolerance * d_prev)) ok = false;
-          d_interp += tw[k] * prev_distance[r.idx[k]];
-        }
-        // On a smooth surface the interpolated distance is the point's; across a
-        // silhouette it mixes the two surfaces and misses it.
-        ok = ok && std::abs(d_interp - d_prev) <= tolerance * d_prev;
-      }
-      r.state = ok ? Reprojected::kValid : Reprojected::kDisoccluded;
-    }
+  parallel_for(motion.height, [&](long y) {
+    reproject_row(motion, prev_distance, tolerance, int(y), out.data() + std::size_t(y) * motion.width);
   });
   return out;
 }
@@ -127,10 +136,7 @@ FlickerReference flicker_reference(const Image& ref_xyz) {
   FlickerReference r;
   r.width = ref_xyz.width;
   r.height = ref_xyz.height;
-  const long n = long(ref_xyz.pixel_count());
-  r.y.resize(size_t(n));
-  for (long i = 0; i < n; ++i) r.y[size_t(i)] = ref_xyz.data[size_t(i) * ref_xyz.channels + 1];
-  r.pq = perceptual_luminance_plane(r.y, r.width, r.height);
+  luminance_planes(ref_xyz, r.y, r.pq);
   r.adaptation = adaptation_luminance(ref_xyz);
   return r;
 }
@@ -151,16 +157,13 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
                                 " but the sequence is " + std::to_string(width_) + "x" + std::to_string(height_));
   const int w = test_xyz.width, h = test_xyz.height;
   const std::size_t n = test_xyz.pixel_count();
-  std::vector<float> yt(n), dist(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    yt[i] = test_xyz.data[i * test_xyz.channels + 1];
-    dist[i] = motion.data[i * motion.channels + 2];
-  }
-  std::vector<double> pqt = perceptual_luminance_plane(yt, w, h);
+  std::vector<float> yt, dist(n);
+  std::vector<double> pqt;
+  luminance_planes(test_xyz, yt, pqt);
+  for (std::size_t i = 0; i < n; ++i) dist[i] = motion.data[i * motion.channels + 2];
   std::optional<FlickerFrame> result;
   std::vector<float> own_adaptation = adaptation_luminance(test_xyz);
   if (pushed_ > 0) {
-    const std::vector<Reprojected> warp = reproject(motion, prev_dist_);
     // Sums per row in parallel, then over rows in order: the same result for any thread count.
     struct Row {
       double ct = 0, cr = 0, cs = 0, emc = 0, e = 0, dt = 0, dr = 0, excess = 0, lag = 0, excess_fixed = 0;
@@ -169,11 +172,14 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
     std::vector<Row> rows(static_cast<size_t>(h));
     parallel_for(h, [&](long y) {
       Row& row = rows[size_t(y)];
+      // Where the row's pixels were in frame t-1 (reproject's, a row at a time).
+      std::vector<Reprojected> warp(static_cast<std::size_t>(w));
+      reproject_row(motion, prev_dist_, kDisocclusionTolerance, int(y), warp.data());
       // The previous frames resampled along the motion at the row's valid pixels, and their PQ in one call.
       std::vector<double> prev(2 * std::size_t(w)), prev_pq(2 * std::size_t(w));
       std::size_t valid = 0;
       for (int x = 0; x < w; ++x) {
-        const Reprojected& rp = warp[std::size_t(y) * w + x];
+        const Reprojected& rp = warp[std::size_t(x)];
         if (rp.state != Reprojected::kValid) continue;
         prev[2 * valid] = rp.sample(prev_yt_);
         prev[2 * valid + 1] = rp.sample(prev_ref_.y);
@@ -195,7 +201,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
           row.excess_fixed += std::max(0.0, fT - fR) / denom;
         }
         // Along the motion.
-        const Reprojected& rp = warp[i];
+        const Reprojected& rp = warp[std::size_t(x)];
         if (rp.state == Reprojected::kBackground) {
           ++row.background;
           continue;

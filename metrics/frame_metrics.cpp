@@ -21,20 +21,28 @@ FrameMetrics::FrameMetrics(const ColorManager& cm, std::string working_space, st
                            MetricOptions options)
     : cm_(cm), space_(std::move(working_space)), per_pixel_(std::move(per_pixel)), options_(std::move(options)) {}
 
-Image FrameMetrics::xyz_of(const Image& img) const {
-  return space_ == kXyzD65Space ? img : cm_.to_xyz_d65(img, space_);
+const Image& FrameMetrics::xyz_of(const Image& img, Image& storage) const {
+  if (space_ == kXyzD65Space) return img;
+  storage = cm_.to_xyz_d65(img, space_);
+  return storage;
 }
 
 FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear) const {
+  return prepare(std::make_shared<const Image>(ref_linear));
+}
+
+FrameMetrics::Reference FrameMetrics::prepare(std::shared_ptr<const Image> ref_linear) const {
   Reference r;
-  r.xyz = xyz_of(ref_linear);
-  r.metric_xyz = options_.display_view.empty() ? r.xyz : metric_xyz(cm_, ref_linear, space_, options_);
-  r.flicker = flicker_reference(r.xyz);
+  r.xyz = space_ == kXyzD65Space ? ref_linear : std::make_shared<const Image>(cm_.to_xyz_d65(*ref_linear, space_));
+  r.metric_xyz = options_.display_view.empty()
+                     ? r.xyz
+                     : std::make_shared<const Image>(metric_xyz(cm_, *ref_linear, space_, options_));
+  r.flicker = flicker_reference(*r.xyz);
   // The reference side of the per-pixel metrics that have one, converted once for every variant.
   auto measured = [&](const char* m) { return std::find(per_pixel_.begin(), per_pixel_.end(), m) != per_pixel_.end(); };
-  if (options_.flip_hdr && measured("flip")) r.flip.emplace(r.metric_xyz, options_.flip_ppd);
-  if (measured("deltaE2000")) r.lab = lab_image(r.metric_xyz);
-  if (measured("deltaEITP")) r.ictcp = ictcp_image(r.metric_xyz, options_.itp_luminance_nits);
+  if (options_.flip_hdr && measured("flip")) r.flip.emplace(*r.metric_xyz, options_.flip_ppd);
+  if (measured("deltaE2000")) r.lab = lab_image(*r.metric_xyz);
+  if (measured("deltaEITP")) r.ictcp = ictcp_image(*r.metric_xyz, options_.itp_luminance_nits);
   return r;
 }
 
@@ -66,11 +74,16 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
     fn();
     if (cost_ms) cost_ms->emplace_back(name, ms_since(t0));
   };
-  Image test_xyz, test_metric;
+  Image xyz_storage, metric_storage;
+  const Image* xyz = nullptr;
+  const Image* metric = nullptr;
   timed("convert", [&] {
-    test_xyz = xyz_of(test_linear);
-    test_metric = options_.display_view.empty() ? test_xyz : metric_xyz(cm_, test_linear, space_, options_);
+    xyz = &xyz_of(test_linear, xyz_storage);
+    metric = xyz;
+    if (!options_.display_view.empty()) metric = &(metric_storage = metric_xyz(cm_, test_linear, space_, options_));
   });
+  const Image& test_xyz = *xyz;
+  const Image& test_metric = *metric;
   const bool defect = !scan_pixels(test_linear, 3).clean();
 
   for (const auto& name : per_pixel_)
@@ -83,7 +96,7 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
       } else if (name == "deltaEITP" && ref.ictcp) {
         map_mean_max(delta_e_itp_map(test_metric, *ref.ictcp), &mean, &max);
       } else {
-        MetricResult r = evaluate_metric(name, test_metric, ref.metric_xyz, options_);
+        MetricResult r = evaluate_metric(name, test_metric, *ref.metric_xyz, options_);
         mean = r.mean;
         max = r.max;
       }
@@ -105,13 +118,13 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
     v.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
   });
   timed("glints", [&] {
-    GlintComparison gc = compare_glints(test_xyz, ref.xyz);
+    GlintComparison gc = compare_glints(test_xyz, *ref.xyz);
     v.emplace_back("glint_density_test", defect ? nan : gc.test.density_per_1000px);
     v.emplace_back("glint_density_ref", gc.ref.density_per_1000px);
     v.emplace_back("glint_hist_emd_oct", defect ? nan : gc.emd_octaves);
   });
   timed("pooled", [&] {
-    std::vector<PooledErrorScale> pooled = pooled_error(test_xyz, ref.xyz, 1);
+    std::vector<PooledErrorScale> pooled = pooled_error(test_xyz, *ref.xyz, 1);
     double pooled8 = nan;
     for (int b : default_pool_block_sizes()) {
       double bias = nan, rms = nan;

@@ -23,6 +23,7 @@
 #include "metrics/flip.h"
 #include "metrics/metric_registry.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -41,14 +42,16 @@ class FrameMetrics {
 
   // The reference of a frame, converted once and shared by every variant.
   struct Reference {
-    Image xyz;         // scene-referred XYZ D65
-    Image metric_xyz;  // what per-pixel metrics compare (display-referred when a view is set)
+    // Shared, not copied: with the working space XYZ D65 and no display view, both are the frame given.
+    std::shared_ptr<const Image> xyz;         // scene-referred XYZ D65
+    std::shared_ptr<const Image> metric_xyz;  // what per-pixel metrics compare (display-referred when a view is set)
     FlickerReference flicker;               // the flicker metric's view of it
     std::optional<HdrFlipReference> flip;   // HDR-FLIP's per-exposure state, when FLIP is measured
     std::optional<LabImage> lab;            // L*a*b* of metric_xyz, when ΔE00 is measured
     std::optional<ICtCpImage> ictcp;        // ICtCp of metric_xyz, when ΔE_ITP is measured
   };
   Reference prepare(const Image& ref_linear) const;
+  Reference prepare(std::shared_ptr<const Image> ref_linear) const;  // the same without a copy of the frame
 
   // All values of `test_linear` against `ref`; feeds `flicker` (the variant's
   // tracker) with the frame's motion target. `cost_ms`, if given, receives the
@@ -61,9 +64,9 @@ class FrameMetrics {
   std::vector<std::string> names() const;
 
  private:
-  // CIE XYZ D65 of an image in the working space (a copy when the working space is XYZ itself, as for
-  // `measure`, which converts every file once when it reads it).
-  Image xyz_of(const Image& img) const;
+  // CIE XYZ D65 of an image in the working space: the image itself when the working space is XYZ (as
+  // for `measure`, which converts every file once when it reads it), else `storage`, converted.
+  const Image& xyz_of(const Image& img, Image& storage) const;
   const ColorManager& cm_;
   std::string space_;
   std::vector<std::string> per_pixel_;

@@ -1,5 +1,7 @@
 #include "metrics/glint_stats.h"
 
+#include "metrics/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -108,8 +110,7 @@ double glint_histogram_hellinger(const GlintStats& t, const GlintStats& r) {
 GlintComparison compare_glints(const Image& test_xyz, const Image& ref_xyz, const GlintOptions& o) {
   require_same_size(test_xyz, ref_xyz, "compare_glints");
   GlintComparison c;
-  c.test = glint_stats(test_xyz, o);
-  c.ref = glint_stats(ref_xyz, o);
+  parallel_for(2, [&](long i) { (i == 0 ? c.test : c.ref) = glint_stats(i == 0 ? test_xyz : ref_xyz, o); });
   c.density_difference_per_1000px = c.test.density_per_1000px - c.ref.density_per_1000px;
   c.emd_octaves = glint_histogram_emd_octaves(c.test, c.ref);
   c.hellinger = glint_histogram_hellinger(c.test, c.ref);

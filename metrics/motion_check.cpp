@@ -13,16 +13,23 @@ namespace glintlab::metrics {
 
 namespace {
 
-// Bilinear value of a plane at texel-index coordinates (centres at integers), edges clamped.
-double bilinear_clamped(const std::vector<double>& p, int w, int h, double qx, double qy) {
-  qx = std::clamp(qx, 0.0, double(w - 1));
-  qy = std::clamp(qy, 0.0, double(h - 1));
-  const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
-  const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
-  const double fx = qx - x0, fy = qy - y0;
+// One axis of a bilinear lookup at texel-index coordinate q (centres at integers), clamped to [0, n - 1].
+struct Tap {
+  int i0, i1;
+  double f;
+  Tap(double q, int n) {
+    q = std::clamp(q, 0.0, double(n - 1));
+    i0 = std::min(int(q), n - 1);
+    i1 = std::min(i0 + 1, n - 1);
+    f = q - i0;
+  }
+};
+
+double bilinear(const std::vector<double>& p, int w, const Tap& tx, const Tap& ty) {
   auto at = [&](int x, int y) { return p[size_t(y) * size_t(w) + size_t(x)]; };
-  return (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x1, y0) + (1 - fx) * fy * at(x0, y1) +
-         fx * fy * at(x1, y1);
+  const double fx = tx.f, fy = ty.f;
+  return (1 - fx) * (1 - fy) * at(tx.i0, ty.i0) + fx * (1 - fy) * at(tx.i1, ty.i0) + (1 - fx) * fy * at(tx.i0, ty.i1) +
+         fx * fy * at(tx.i1, ty.i1);
 }
 
 }  // namespace
@@ -37,7 +44,6 @@ MotionExplained motion_explained(const std::vector<double>& p0, const std::vecto
     size_t n = 0;
   };
   std::vector<Row> rows(static_cast<size_t>(h));
-  static constexpr double kSign[4][2] = {{1, 1}, {-1, -1}, {1, -1}, {-1, 1}};  // given, negated, flip y, flip x
   parallel_for(h, [&](long yl) {
     const int y = int(yl);
     Row& r = rows[size_t(y)];
@@ -49,8 +55,13 @@ MotionExplained motion_explained(const std::vector<double>& p0, const std::vecto
       if (!(std::isfinite(qx) && std::isfinite(qy) && qx >= 0 && qy >= 0 && qx <= w - 1 && qy <= h - 1)) continue;
       const double now = p1[size_t(y) * size_t(w) + size_t(x)];
       r.fixed += std::abs(now - p0[size_t(y) * size_t(w) + size_t(x)]);
-      for (int c = 0; c < 4; ++c)
-        r.cand[c] += std::abs(now - bilinear_clamped(p0, w, h, x - kSign[c][0] * vx, y - kSign[c][1] * vy));
+      // The four candidates take x - vx or x + vx and y - vy or y + vy: given (-, -), negated (+, +),
+      // y flipped (-, +), x flipped (+, -).
+      const Tap xm(x - vx, w), xp(x + vx, w), ym(y - vy, h), yp(y + vy, h);
+      r.cand[0] += std::abs(now - bilinear(p0, w, xm, ym));
+      r.cand[1] += std::abs(now - bilinear(p0, w, xp, yp));
+      r.cand[2] += std::abs(now - bilinear(p0, w, xm, yp));
+      r.cand[3] += std::abs(now - bilinear(p0, w, xp, ym));
       ++r.n;
     }
   });

@@ -7,6 +7,8 @@
 // Call once at the start of main().
 #pragma once
 
+#include <cstddef>
+
 namespace glintlab {
 
 void tune_allocator_for_rendering();
@@ -20,5 +22,15 @@ void tune_allocator_for_rendering();
 // one; with one arena 36 frames take 242k: only the first touch of the
 // working set). Call before the threads start.
 void share_one_heap_between_threads();
+
+// Lets the kernel back the next `bytes` of the heap with 2 MiB pages (madvise
+// MADV_HUGEPAGE over a block that is then freed and stays in the heap, as
+// tune_allocator_for_rendering keeps it): the first touch of a large working
+// set then takes one page fault per 2 MiB instead of one per 4 KiB. Nothing
+// is used until touched. Call after tune_allocator_for_rendering, with less
+// than 1 GiB; false (and no harm) where the kernel refuses. Measured on
+// `glintlab measure`: see tests/bench/README.md.
+bool reserve_heap_in_huge_pages(std::size_t bytes);
+constexpr std::size_t kMaxHugeReservation = (std::size_t(1) << 30) - (std::size_t(4) << 20);
 
 }  // namespace glintlab

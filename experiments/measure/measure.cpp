@@ -134,10 +134,15 @@ std::string vector_layer(MotionConvention c, const FrameHeader& h, const std::st
 
 // Everything read for one frame index, decoded ahead of the measurement on another thread.
 struct FrameInput {
-  std::optional<ColourFrame> reference;  // images in CIE XYZ D65
+  std::optional<ColourFrame> reference;  // images in CIE XYZ D65 (the reference's image moved to base_image)
   std::vector<ColourFrame> tests;
   std::optional<MotionVectors> vectors;  // from files
   std::optional<Image> depth;
+  // The reference's view of the metrics, prepared here too (on the reading thread, while the frame
+  // before is measured); without a reference each test's own flicker state.
+  std::shared_ptr<const Image> base_image;  // the reference (shared with `prepared`), or a copy of test 0 for flow
+  std::optional<metrics::FrameMetrics::Reference> prepared;
+  std::vector<metrics::FlickerReference> own;
 };
 
 struct Plan {
@@ -151,13 +156,20 @@ struct Plan {
   int width = 0, height = 0;
 };
 
-FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm) {
+FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm, const metrics::FrameMetrics& measure) {
   FrameInput in;
   if (p.reference) in.reference = read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space);
   for (const auto& t : p.tests) in.tests.push_back(read_colour_frame(t, k, cm, metrics::kXyzD65Space));
   if (p.motion) in.vectors = convert_motion(p.convention, read_frame_channels(p.motion->paths[k], p.motion->channels),
                                             p.motion_channels);
   if (p.depth) in.depth = read_frame_channels(p.depth->paths[k], p.depth->channels);
+  if (in.reference) {
+    in.base_image = std::make_shared<const Image>(std::move(in.reference->image));
+    in.prepared = measure.prepare(in.base_image);
+  } else {
+    if (!in.vectors) in.base_image = std::make_shared<const Image>(in.tests[0].image);  // measured too: a copy
+    for (const auto& t : in.tests) in.own.push_back(metrics::flicker_reference(t.image));
+  }
   return in;
 }
 
@@ -451,20 +463,24 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
 
   ImageWriter images(out_dir, plan, cm);
   const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
+  auto read = [&p, &cm, &measure](int k) {
+    return std::async(std::launch::async, [&p, &cm, &measure, k] { return read_inputs(p, size_t(k), cm, measure); });
+  };
   std::vector<metrics::FlickerTracker> trackers(p.tests.size());
   if (first_missing < count) {
+    // The loop's working set in 2 MiB pages: about 280 bytes a pixel and 70 more for each test (peak
+    // resident memory at 1920x1080: 646 MB with one test, 792 MB with two), at most what one call takes.
+    const size_t working_set = size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size());
+    reserve_heap_in_huge_pages(std::min(working_set, kMaxHugeReservation));
     const int start = std::max(0, first_missing - 1);
     Progress progress(log, o.name, int(p.tests.size()) * (count - start));
-    std::future<FrameInput> next =
-        std::async(std::launch::async, [&p, &cm, start] { return read_inputs(p, size_t(start), cm); });
-    std::optional<FrameInput> prev;
+    std::future<FrameInput> next = read(start);
+    std::shared_ptr<const Image> prev_flow_base;  // kept only to estimate flow (no vectors given)
     std::optional<Image> prev_motion_forward;
     std::vector<double> prev_base_pq;
     for (int k = start; k < count; ++k) {
       FrameInput in = next.get();
-      if (k + 1 < count)
-        next = std::async(std::launch::async, [&p, &cm, k] { return read_inputs(p, size_t(k) + 1, cm); });
-      const ColourFrame& base = in.reference ? *in.reference : in.tests[0];
+      if (k + 1 < count) next = read(k + 1);
       // ---- the motion of frame k in glintlab's convention, with its mask
       Image motion;
       size_t motion_bad = 0;
@@ -472,12 +488,11 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
           motion = flicker_motion(*in.vectors, in.depth ? &*in.depth : nullptr,
                                 prev_motion_forward ? &*prev_motion_forward : nullptr);
         prev_motion_forward = in.vectors->forward;
-      } else if (k > 0 && prev) {
-        const ColourFrame& prev_base = prev->reference ? *prev->reference : prev->tests[0];
+      } else if (k > 0 && prev_flow_base) {
         metrics::FlowOptions flow;
         flow.channel = 1;  // Y of XYZ
         flow.forward_backward = true;
-        motion = metrics::estimate_motion(prev_base.image, base.image, flow);
+        motion = metrics::estimate_motion(*prev_flow_base, *in.base_image, flow);
       } else {
         motion = Image(p.width, p.height, 4, 1.0f);
         for (size_t i = 0; i < motion.pixel_count(); ++i) motion.data[4 * i] = motion.data[4 * i + 1] = 0.0f;
@@ -487,26 +502,21 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
           motion_bad += !(std::isfinite(motion.data[4 * i]) && std::isfinite(motion.data[4 * i + 1]));
       }
       // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
-      std::optional<metrics::FrameMetrics::Reference> prepared;
-      if (in.reference) prepared = measure.prepare(in.reference->image);
-      // Without a reference each test is its own: its luminance, PQ and adaptation, once per frame.
-      std::vector<metrics::FlickerReference> own;
-      if (!prepared)
-        for (const auto& t : in.tests) own.push_back(metrics::flicker_reference(t.image));
-      std::vector<double> base_pq = prepared ? prepared->flicker.pq : own[0].pq;
+      const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
+      const std::vector<metrics::FlickerReference>& own = in.own;
+      const std::vector<double>& base_pq = prepared ? prepared->flicker.pq : own[0].pq;
       metrics::MotionExplained me;
       const double nan = std::nan("");
       me.given = me.negated = me.flip_y = me.flip_x = nan;
       if (k > 0 && !prev_base_pq.empty())
         me = metrics::motion_explained(prev_base_pq, base_pq, p.width, p.height, motion);
-      prev_base_pq = std::move(base_pq);
       const bool emit_reference = k >= first_missing;
       if (in.reference && emit_reference) {
         ReferenceRecord rr;
         rr.reference = 0;
         rr.name = "reference";
         rr.frame = k;
-        rr.image = &in.reference->image;
+        rr.image = in.base_image.get();
         rr.cached = false;
         rr.wall_ms = in.reference->read_ms;
         rr.gpu_ms = nan;
@@ -568,7 +578,8 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         detail << rec.name << " frame " << p.numbers[size_t(k)] << (k < first_missing ? " (replay)" : "");
         progress.step(detail.str());
       }
-      prev = std::move(in);
+      if (!in.vectors) prev_flow_base = in.base_image;
+      prev_base_pq = std::move(prepared ? in.prepared->flicker.pq : in.own[0].pq);  // not needed any more this frame
     }
   }
 

@@ -1,6 +1,7 @@
 #include "experiments/measure/motion_convention.h"
 
 #include "core/util/json_check.h"
+#include "metrics/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -145,7 +146,8 @@ Image to_convention(MotionConvention c, const MotionVectors& v) {
 Image flicker_motion(const MotionVectors& v, const Image* depth_now, const Image* prev_forward) {
   const int w = v.backward.width, h = v.backward.height;
   Image out(w, h, 4);
-  for (int y = 0; y < h; ++y)
+  metrics::parallel_for(h, [&](long yl) {
+    const int y = int(yl);
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * size_t(w) + size_t(x);
       float* o = out.data.data() + 4 * i;
@@ -184,6 +186,7 @@ Image flicker_motion(const MotionVectors& v, const Image* depth_now, const Image
         if (!(lhs <= rhs)) o[3] = -1.0f;
       }
     }
+  });
   return out;
 }
 

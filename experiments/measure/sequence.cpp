@@ -1,5 +1,7 @@
 #include "experiments/measure/sequence.h"
 
+#include "experiments/measure/exr_scanlines.h"
+
 #include "core/util/content_hash.h"
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
@@ -262,10 +264,11 @@ std::vector<std::string> colour_channels(const FrameHeader& header, const std::s
 
 Image read_frame_channels(const std::string& path, const std::vector<std::string>& channels, int image_channels) {
   const FrameHeader h = read_frame_header(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw ConfigError("'" + path + "': " + OIIO::geterror());
   const int nc = std::max(image_channels, int(channels.size()));
   Image out(h.width, h.height, nc, nc > int(channels.size()) ? 1.0f : 0.0f);
+  if (read_exr_scanlines(path, channels, out)) return out;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw ConfigError("'" + path + "': " + OIIO::geterror());
   std::vector<bool> done(channels.size(), false);
   for (int part = 0; part < kMaxParts && in->seek_subimage(part, 0); ++part) {
     const OIIO::ImageSpec& spec = in->spec();

@@ -466,7 +466,7 @@ int bench(int argc, char** argv) {
     std::vector<double> alone;
     for (int i = 0; i < 3; ++i) {
       auto t0 = std::chrono::steady_clock::now();
-      metrics::hdr_flip_map(test_xyz, ref.xyz, spec.metric_options.flip_ppd);
+      metrics::hdr_flip_map(test_xyz, *ref.xyz, spec.metric_options.flip_ppd);
       alone.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     std::printf("  %-16s %8.2f ms  (HDR-FLIP preparing the reference for every variant, as before)\n", "flip, unshared",

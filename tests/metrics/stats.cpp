@@ -150,6 +150,34 @@ TEST(PooledError, SkipsBlocksLargerThanImageAndIgnoresRemainder) {
 }
 
 // ---------------------------------------------------------------- glint_stats
+// The default sizes double from 2 to 64: each is summed from the blocks of the one before. Against
+// every size computed alone from the pixels, on an HDR image whose sizes leave remainders.
+TEST(PooledError, BlocksSummedFromHalfBlocksEqualTheDirectSums) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  Image t(203, 141, 4, 1.0f), r(203, 141, 4, 1.0f);
+  for (size_t i = 0; i < t.data.size(); ++i) {
+    r.data[i] = u(rng);
+    t.data[i] = r.data[i] + 0.3f * (u(rng) - 0.5f) + (u(rng) < 0.002f ? 500.0f : 0.0f);  // sparkles
+  }
+  const auto all = pooled_error(t, r);
+  ASSERT_EQ(all.size(), 6u);  // 64 < 141: every default size fits
+  for (const auto& p : all) {
+    const auto alone = pooled_error(t, r, 1, {p.block_size});
+    ASSERT_EQ(alone.size(), 1u);
+    EXPECT_EQ(alone[0].blocks_x, p.blocks_x);
+    EXPECT_EQ(alone[0].blocks_y, p.blocks_y);
+    EXPECT_NEAR(p.bias, alone[0].bias, 1e-12 * std::abs(alone[0].bias) + 1e-15) << p.block_size;
+    EXPECT_NEAR(p.rms, alone[0].rms, 1e-12 * alone[0].rms) << p.block_size;
+    EXPECT_NEAR(p.ref_mean, alone[0].ref_mean, 1e-12 * alone[0].ref_mean) << p.block_size;
+  }
+  // A list that does not double is summed from the pixels at every size.
+  const auto odd = pooled_error(t, r, 1, {3, 6, 5});
+  ASSERT_EQ(odd.size(), 3u);
+  EXPECT_EQ(odd[1].blocks_x, 203 / 6);
+  EXPECT_NEAR(odd[1].rms, pooled_error(t, r, 1, {6})[0].rms, 1e-12 * odd[1].rms);
+}
+
 TEST(GlintStats, LocalMeanIsTheClippedBoxMean) {
   Image im(9, 7, 3, 0.0f);
   std::mt19937 rng(2);
@@ -254,6 +282,43 @@ TEST(PixelScan, CountsPixelsOncePerCategory) {
   EXPECT_FALSE(s.clean());
   EXPECT_EQ(scan_pixels(im, 3).nan, 1u);  // alpha left out
   EXPECT_TRUE(scan_pixels(Image(3, 3, 4, 1.0f)).clean());
+}
+
+// scan_pixels skips blocks whose bits are all clean: against the definition, pixel by pixel, with
+// special values scattered over many blocks, the last one partial, some only in the unscanned alpha.
+TEST(PixelScan, TheBlockTestCountsWhatThePixelDefinitionCounts) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const float special[] = {nan, inf, -inf, -1e-30f, -0.0f, 0.0f, std::numeric_limits<float>::max(),
+                           std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(), -3.0f};
+  std::mt19937 rng(11);
+  Image im(1000, 3, 4, 0.25f);  // 3000 pixels: 11 full blocks of 256 and a partial one
+  for (int k = 0; k < 60; ++k) {
+    const size_t i = rng() % im.data.size();
+    im.data[i] = special[rng() % (sizeof special / sizeof special[0])];
+  }
+  for (int nc : {3, 4}) {
+    PixelScan want;
+    want.pixels = im.pixel_count();
+    for (size_t p = 0; p < im.pixel_count(); ++p) {
+      bool n = false, pi = false, ni = false, neg = false;
+      for (int c = 0; c < nc; ++c) {
+        const float v = im.data[p * 4 + size_t(c)];
+        n |= std::isnan(v);
+        pi |= v == inf;
+        ni |= v == -inf;
+        neg |= std::isfinite(v) && v < 0.0f;
+      }
+      want.nan += n, want.pos_inf += pi, want.neg_inf += ni, want.infinite += pi || ni, want.negative += neg;
+    }
+    const PixelScan got = scan_pixels(im, nc);
+    EXPECT_EQ(got.pixels, want.pixels);
+    EXPECT_EQ(got.nan, want.nan) << nc;
+    EXPECT_EQ(got.pos_inf, want.pos_inf) << nc;
+    EXPECT_EQ(got.neg_inf, want.neg_inf) << nc;
+    EXPECT_EQ(got.infinite, want.infinite) << nc;
+    EXPECT_EQ(got.negative, want.negative) << nc;
+    EXPECT_GT(want.nan + want.infinite + want.negative, 10u);
+  }
 }
 
 // ---------------------------------------------------------------- metric_registry

@@ -1,0 +1,213 @@
+#include "experiments/measure/exr_scanlines.h"
+
+#include <Imath/half.h>
+#include <OpenEXR/openexr.h>
+#include <libdeflate.h>
+
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace glintlab {
+namespace {
+
+// The OpenEXR core library reports errors through this; they are not printed: a file this path
+// cannot read goes to OpenImageIO, whose message names what is wrong.
+void quiet(exr_const_context_t, exr_result_t, const char*) {}
+
+struct Context {
+  exr_context_t c = nullptr;
+  ~Context() {
+    if (c) exr_finish(&c);
+  }
+};
+
+struct Inflater {
+  libdeflate_decompressor* d = libdeflate_alloc_decompressor();
+  ~Inflater() { libdeflate_free_decompressor(d); }
+};
+
+// Undoes what OpenEXR's ZIP and ZIPS compressors do after deflate's inverse (the file format's
+// definition; OpenEXR's internal_zip.c): a byte predictor (each byte stored as the difference to
+// the one before, plus 128) over the whole chunk, then the two halves of the chunk interleaved
+// (byte 2i from the first half, 2i+1 from the second).
+// Scalar forms first; the SSE2 ones below compute the same bytes 16 at a time (the predictor as a
+// prefix sum within the register, carried from the last byte of the one before).
+void undo_zip_predictor(std::uint8_t* t, size_t n) {
+  size_t i = 1;
+#if defined(__SSE2__)
+  if (n >= 17) {
+    const __m128i bias = _mm_set1_epi8(char(-128));
+    __m128i carry = _mm_set1_epi8(char(t[0]));
+    for (; i + 16 <= n; i += 16) {
+      __m128i x = _mm_add_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(t + i)), bias);
+      x = _mm_add_epi8(x, _mm_slli_si128(x, 1));
+      x = _mm_add_epi8(x, _mm_slli_si128(x, 2));
+      x = _mm_add_epi8(x, _mm_slli_si128(x, 4));
+      x = _mm_add_epi8(x, _mm_slli_si128(x, 8));
+      x = _mm_add_epi8(x, carry);
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(t + i), x);
+      const __m128i last = _mm_unpacklo_epi8(_mm_srli_si128(x, 15), _mm_srli_si128(x, 15));  // byte 15, twice
+      carry = _mm_shuffle_epi32(_mm_shufflelo_epi16(last, 0), 0);                          // in every byte
+    }
+  }
+#endif
+  for (; i < n; ++i) t[i] = std::uint8_t(int(t[i - 1]) + int(t[i]) - 128);
+}
+void deinterleave(const std::uint8_t* in, std::uint8_t* out, size_t n) {
+  const std::uint8_t* a = in;
+  const std::uint8_t* b = in + (n + 1) / 2;
+  size_t i = 0;
+#if defined(__SSE2__)
+  for (; i + 32 <= n; i += 32, a += 16, b += 16) {
+    const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
+    const __m128i y = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm_unpacklo_epi8(x, y));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i + 16), _mm_unpackhi_epi8(x, y));
+  }
+#endif
+  for (; i + 1 < n; i += 2) out[i] = *a++, out[i + 1] = *b++;
+  if (i < n) out[i] = *a;
+}
+
+// n halves (little-endian bits) to floats at dst[0], dst[stride], ...: with F16C where the CPU has it.
+#if defined(__x86_64__)
+__attribute__((target("f16c"))) void halves_to_floats_f16c(const std::uint8_t* src, float* dst, size_t stride,
+                                                           size_t n) {
+  size_t x = 0;
+  alignas(16) float f[8];
+  for (; x + 8 <= n; x += 8) {
+    _mm256_store_ps(f, _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(src + 2 * x))));
+    for (size_t j = 0; j < 8; ++j) dst[(x + j) * stride] = f[j];
+  }
+  for (; x < n; ++x) dst[x * stride] = _cvtsh_ss(std::uint16_t(src[2 * x] | (src[2 * x + 1] << 8)));
+}
+#endif
+void halves_to_floats(const std::uint8_t* src, float* dst, size_t stride, size_t n) {
+#if defined(__x86_64__)
+  static const bool f16c = __builtin_cpu_supports("f16c");
+  if (f16c) return halves_to_floats_f16c(src, dst, stride, n);
+#endif
+  for (size_t x = 0; x < n; ++x) {
+    Imath::half h;
+    h.setBits(std::uint16_t(src[2 * x] | (src[2 * x + 1] << 8)));
+    dst[x * stride] = float(h);
+  }
+}
+
+struct Wanted {
+  int channel = 0;     // index in the part's (alphabetical) channel list
+  size_t image_channel = 0;
+  exr_pixel_type_t type = EXR_PIXEL_HALF;
+};
+
+}  // namespace
+
+bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out) {
+  static_assert(sizeof(Imath::half) == 2, "half is two bytes");
+  {  // only little-endian hosts (the file's byte order) take this path
+    const std::uint16_t one = 1;
+    std::uint8_t b;
+    std::memcpy(&b, &one, 1);
+    if (b != 1) return false;
+  }
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = quiet;
+  Context ctx;
+  if (exr_start_read(&ctx.c, path.c_str(), &init) != EXR_ERR_SUCCESS) return false;
+  int parts = 0;
+  if (exr_get_count(ctx.c, &parts) != EXR_ERR_SUCCESS) return false;
+
+  // Which part gives which channel: as OpenImageIO's path, the first part of the image's size that has it.
+  std::vector<std::vector<Wanted>> plan(static_cast<size_t>(parts));
+  std::vector<bool> found(channels.size(), false);
+  for (int p = 0; p < parts; ++p) {
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t* list = nullptr;
+    if (exr_get_data_window(ctx.c, p, &dw) != EXR_ERR_SUCCESS || exr_get_channels(ctx.c, p, &list) != EXR_ERR_SUCCESS)
+      return false;
+    if (std::int64_t(dw.max.x) - dw.min.x + 1 != out.width || std::int64_t(dw.max.y) - dw.min.y + 1 != out.height)
+      continue;
+    for (size_t k = 0; k < channels.size(); ++k)
+      for (int c = 0; c < list->num_channels && !found[k]; ++c) {
+        const exr_attr_chlist_entry_t& e = list->entries[c];
+        if (channels[k].size() != size_t(e.name.length) ||
+            std::memcmp(channels[k].data(), e.name.str, channels[k].size()) != 0)
+          continue;
+        if (e.x_sampling != 1 || e.y_sampling != 1 || (e.pixel_type != EXR_PIXEL_HALF && e.pixel_type != EXR_PIXEL_FLOAT))
+          return false;
+        plan[size_t(p)].push_back({c, k, e.pixel_type});
+        found[k] = true;
+      }
+  }
+  for (bool f : found)
+    if (!f) return false;  // OpenImageIO's path names the missing channel
+
+  Inflater inflater;
+  if (!inflater.d) return false;
+  std::vector<std::uint8_t> packed, inflated, unpacked;
+  const size_t nc = size_t(out.channels), w = size_t(out.width);
+  for (int p = 0; p < parts; ++p) {
+    if (plan[size_t(p)].empty()) continue;
+    exr_storage_t storage;
+    exr_compression_t comp;
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t* list = nullptr;
+    int32_t lines = 0;
+    if (exr_get_storage(ctx.c, p, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE ||
+        exr_get_compression(ctx.c, p, &comp) != EXR_ERR_SUCCESS ||
+        (comp != EXR_COMPRESSION_NONE && comp != EXR_COMPRESSION_ZIPS && comp != EXR_COMPRESSION_ZIP) ||
+        exr_get_data_window(ctx.c, p, &dw) != EXR_ERR_SUCCESS || exr_get_channels(ctx.c, p, &list) != EXR_ERR_SUCCESS ||
+        exr_get_scanlines_per_chunk(ctx.c, p, &lines) != EXR_ERR_SUCCESS || lines <= 0)
+      return false;
+    // One line of a chunk, uncompressed: each channel's samples in turn, in the list's order.
+    std::vector<size_t> offset(size_t(list->num_channels) + 1, 0);
+    for (int c = 0; c < list->num_channels; ++c)
+      offset[size_t(c) + 1] = offset[size_t(c)] + w * (list->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4);
+    const size_t line_bytes = offset.back();
+    for (std::int64_t y0 = dw.min.y; y0 <= dw.max.y; y0 += lines) {
+      exr_chunk_info_t ci;
+      if (exr_read_scanline_chunk_info(ctx.c, p, int(y0), &ci) != EXR_ERR_SUCCESS) return false;
+      const std::int64_t first = std::max<std::int64_t>(ci.start_y, dw.min.y);
+      const std::int64_t last = std::min<std::int64_t>(std::int64_t(ci.start_y) + ci.height - 1, dw.max.y);
+      if (first > last || ci.unpacked_size != size_t(last - first + 1) * line_bytes) return false;
+      packed.resize(ci.packed_size);
+      if (exr_read_chunk(ctx.c, p, &ci, packed.data()) != EXR_ERR_SUCCESS) return false;
+      const std::uint8_t* bytes = packed.data();
+      if (comp != EXR_COMPRESSION_NONE && ci.packed_size < ci.unpacked_size) {
+        // smaller than its pixels: deflated (a chunk that would not shrink is stored as it is)
+        inflated.resize(ci.unpacked_size);
+        unpacked.resize(ci.unpacked_size);
+        size_t got = 0;
+        if (libdeflate_zlib_decompress(inflater.d, packed.data(), packed.size(), inflated.data(), inflated.size(),
+                                       &got) != LIBDEFLATE_SUCCESS ||
+            got != ci.unpacked_size)
+          return false;
+        undo_zip_predictor(inflated.data(), inflated.size());
+        deinterleave(inflated.data(), unpacked.data(), unpacked.size());
+        bytes = unpacked.data();
+      } else if (ci.packed_size != ci.unpacked_size) {
+        return false;
+      }
+      for (std::int64_t y = first; y <= last; ++y) {
+        const std::uint8_t* line = bytes + size_t(y - first) * line_bytes;
+        float* row = out.data.data() + size_t(y - dw.min.y) * w * nc;
+        for (const Wanted& want : plan[size_t(p)]) {
+          const std::uint8_t* src = line + offset[size_t(want.channel)];
+          float* dst = row + want.image_channel;
+          if (want.type == EXR_PIXEL_FLOAT) {
+            for (size_t x = 0; x < w; ++x) std::memcpy(dst + x * nc, src + 4 * x, 4);
+          } else {
+            halves_to_floats(src, dst, nc, w);
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace glintlab

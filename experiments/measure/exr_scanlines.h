@@ -1,0 +1,27 @@
+// The fast way in for the files `glintlab measure` reads most: OpenEXR scanline
+// files, uncompressed or ZIP / ZIPS (what Blender, Nuke and OpenImageIO write by
+// default). The OpenEXR core library (libOpenEXRCore) parses the header and
+// reads each chunk's bytes; libdeflate inflates them (several times faster than
+// zlib, which OpenEXR 3.1 uses); the format's own byte predictor and interleave
+// are undone here; halves become floats straight into the image. Everything
+// else (tiled, deep, subsampled or UINT channels, PIZ, DWA, ... and every other
+// format) is left to OpenImageIO by returning false. Same values either way: a
+// test compares both on every case.
+#pragma once
+
+#include "core/util/image.h"
+
+#include <string>
+#include <vector>
+
+namespace glintlab {
+
+// Reads the named channels (each from the first part, in file order, of size
+// width x height whose channel list has it) into `out` (width x height x
+// image_channels floats, already filled: channel k of every pixel from
+// channels[k]). Returns true when done; false when the file is not one this
+// path reads, or is damaged: then read it with OpenImageIO, which writes
+// every named channel again and names what is wrong with a damaged file.
+bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out);
+
+}  // namespace glintlab

@@ -1,0 +1,153 @@
+// The fast way into OpenEXR scanline files (experiments/measure/exr_scanlines.h) gives the values
+// OpenImageIO gives, to the bit, for every layout it takes, and declines the others.
+#include "experiments/measure/exr_scanlines.h"
+#include "experiments/measure/sequence.h"
+
+#include "tests/support/temp_dir.h"
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+
+namespace fs = std::filesystem;
+using namespace glintlab;
+
+namespace {
+
+constexpr int kW = 37, kH = 35;  // odd: the vector loops' tails; 35 lines: a partial 16-line ZIP chunk
+
+// Channels R, G, B, A, Z: smooth ramps (they compress), noise (it does not: stored as is), and
+// NaN, Inf, negative, subnormal values.
+std::vector<float> test_pixels(bool noise) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 4.0f);
+  std::vector<float> px(size_t(kW) * kH * 5);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      for (int c = 0; c < 5; ++c)
+        px[(size_t(y) * kW + x) * 5 + c] = noise ? u(rng) : 0.01f * float(x + 2 * y) + 0.5f * float(c);
+  const float special[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                           -std::numeric_limits<float>::infinity(), -2.5f, 6e-8f, -0.0f, 65504.0f};
+  for (size_t k = 0; k < sizeof special / sizeof special[0]; ++k) px[(k * 131) % px.size()] = special[k];
+  return px;
+}
+
+void write(const fs::path& path, const std::vector<float>& px, OIIO::TypeDesc type, const std::string& compression,
+           int origin_x = 0, int origin_y = 0, bool tiled = false) {
+  OIIO::ImageSpec spec(kW, kH, 5, type);
+  spec.channelnames = {"R", "G", "B", "A", "Z"};
+  spec.alpha_channel = 3;
+  spec.z_channel = 4;
+  spec.x = origin_x;
+  spec.y = origin_y;
+  spec.full_x = spec.full_y = 0;
+  spec.full_width = kW + origin_x;
+  spec.full_height = kH + origin_y;
+  if (tiled) spec.tile_width = spec.tile_height = 16;
+  spec.attribute("compression", compression);
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec)) << OIIO::geterror();
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data())) << out->geterror();
+  ASSERT_TRUE(out->close());
+}
+
+// What OpenImageIO reads of the named channels of part `part`, as floats.
+std::vector<std::vector<float>> oiio_channels(const fs::path& path, const std::vector<std::string>& names,
+                                              int part = 0) {
+  auto in = OIIO::ImageInput::open(path.string());
+  EXPECT_TRUE(in && in->seek_subimage(part, 0));
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> all(size_t(spec.width) * spec.height * spec.nchannels);
+  EXPECT_TRUE(in->read_image(part, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
+  std::vector<std::vector<float>> out;
+  for (const auto& n : names) {
+    const int c = spec.channelindex(n);
+    EXPECT_GE(c, 0) << n;
+    std::vector<float> v(size_t(spec.width) * spec.height);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = all[i * size_t(spec.nchannels) + size_t(c)];
+    out.push_back(v);
+  }
+  return out;
+}
+
+// Every value of channel k of `im` has the bits of want[k]; the channels after them are still 1.
+void expect_same_bits(const Image& im, const std::vector<std::vector<float>>& want, const std::string& what) {
+  size_t differ = 0;
+  for (size_t k = 0; k < want.size(); ++k)
+    for (size_t i = 0; i < im.pixel_count(); ++i)
+      differ += std::memcmp(&im.data[i * size_t(im.channels) + k], &want[k][i], 4) != 0;
+  EXPECT_EQ(differ, 0u) << what;
+  for (size_t i = 0; i < im.pixel_count(); ++i)
+    for (int c = int(want.size()); c < im.channels; ++c) ASSERT_EQ(im.data[i * size_t(im.channels) + c], 1.0f) << what;
+}
+
+}  // namespace
+
+TEST(ExrScanlines, SameBitsAsOpenImageIOForEveryLayoutItReads) {
+  test::TempDir dir("exr_scanlines");
+  const std::vector<std::string> names = {"B", "R", "Z"};  // not in file order
+  int read = 0;
+  for (bool noise : {false, true})
+    for (OIIO::TypeDesc type : {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT})
+      for (const char* comp : {"none", "zip", "zips", "piz", "rle"})
+        for (int origin : {0, 5}) {
+          const std::string what = std::string(comp) + (type == OIIO::TypeDesc::HALF ? " half" : " float") +
+                                   (noise ? " noise" : " ramps") + " origin " + std::to_string(origin);
+          const fs::path path = dir.path() / "f.exr";
+          write(path, test_pixels(noise), type, comp, origin, origin / 2);
+          Image im(kW, kH, 4, 1.0f);
+          const bool fast = read_exr_scanlines(path.string(), names, im);
+          const bool supported = std::string(comp) == "none" || std::string(comp) == "zip" || std::string(comp) == "zips";
+          EXPECT_EQ(fast, supported) << what;
+          if (fast) {
+            expect_same_bits(im, oiio_channels(path, names), what);
+            ++read;
+          }
+          // Whichever path reads it, read_frame_channels gives OpenImageIO's values.
+          expect_same_bits(read_frame_channels(path.string(), names, 4), oiio_channels(path, names), what);
+        }
+  EXPECT_EQ(read, 24);
+}
+
+TEST(ExrScanlines, DeclinesTiledFilesMissingChannelsAndDamage) {
+  test::TempDir dir("exr_scanlines_no");
+  Image im(kW, kH, 4, 1.0f);
+  write(dir.path() / "tiled.exr", test_pixels(false), OIIO::TypeDesc::HALF, "zip", 0, 0, true);
+  EXPECT_FALSE(read_exr_scanlines((dir.path() / "tiled.exr").string(), {"R"}, im));
+  write(dir.path() / "f.exr", test_pixels(false), OIIO::TypeDesc::HALF, "zip");
+  EXPECT_FALSE(read_exr_scanlines((dir.path() / "f.exr").string(), {"R", "Q"}, im));  // no channel Q
+  Image small(kW - 1, kH, 4, 1.0f);
+  EXPECT_FALSE(read_exr_scanlines((dir.path() / "f.exr").string(), {"R"}, small));  // another size
+  // Truncated: declined, and read_frame_channels says what OpenImageIO says of it, naming the file.
+  const auto bytes = fs::file_size(dir.path() / "f.exr");
+  fs::copy_file(dir.path() / "f.exr", dir.path() / "cut.exr");
+  fs::resize_file(dir.path() / "cut.exr", bytes * 2 / 3);
+  EXPECT_FALSE(read_exr_scanlines((dir.path() / "cut.exr").string(), {"R"}, im));
+  try {
+    read_frame_channels((dir.path() / "cut.exr").string(), {"R"});
+    ADD_FAILURE() << "a truncated file was read";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.exr"), std::string::npos) << e.what();
+  }
+  // Not an EXR at all.
+  std::ofstream(dir.path() / "x.exr") << "not an image";
+  EXPECT_FALSE(read_exr_scanlines((dir.path() / "x.exr").string(), {"R"}, im));
+}
+
+// A multi-layer file of a renderer none of us wrote (Cycles, tests/data/blender): its layers' channels.
+TEST(ExrScanlines, CyclesMultiLayerFrame) {
+  const fs::path path = fs::path(GLINTLAB_EXPERIMENT_DIR).parent_path() / "tests/data/blender/ref/frame_0001.exr";
+  const FrameHeader h = read_frame_header(path.string());
+  std::vector<std::string> names;
+  for (const auto& c : h.channels)
+    if (c.find("Combined.") != std::string::npos || c.find("Vector.") != std::string::npos) names.push_back(c);
+  ASSERT_GE(names.size(), 7u);
+  Image im(h.width, h.height, int(names.size()) + 1, 1.0f);
+  ASSERT_TRUE(read_exr_scanlines(path.string(), names, im));
+  expect_same_bits(im, oiio_channels(path, names), path.string());
+}
