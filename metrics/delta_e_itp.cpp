@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "metrics/parallel.h"
+#include "metrics/simd_clones.h"
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,7 +57,7 @@ Mat3 rgb_to_xyz_npm(double xr, double yr, double xg, double yg, double xb, doubl
   return M;
 }
 
-void pq_inverse_eotf_n(const double* luminance_nits, double* out, std::size_t n) {
+GLINTLAB_AVX2_CLONES void pq_inverse_eotf_n(const double* luminance_nits, double* out, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     double v = luminance_nits[i];
     if (!(v > 0.0)) v = 0.0;        // also NaN

@@ -9,10 +9,11 @@
 #include "metrics/delta_e_itp.h"
 #include "metrics/error_metrics.h"
 #include "metrics/parallel.h"
+#include "metrics/simd_clones.h"
 
 namespace glintlab::metrics {
 
-void perceptual_luminance_n(const double* Y, double* out, std::size_t n, double reference_nits) {
+GLINTLAB_AVX2_CLONES void perceptual_luminance_n(const double* Y, double* out, std::size_t n, double reference_nits) {
   std::vector<double> nits(n);
   for (std::size_t i = 0; i < n; ++i) nits[i] = std::isnan(Y[i]) ? 0.0 : std::max(Y[i], 0.0) * reference_nits;
   pq_inverse_eotf_n(nits.data(), nits.data(), n);
@@ -45,6 +46,16 @@ double flicker_ratio(double mean_test, double mean_ref) {
   return mean_test / mean_ref;
 }
 
+namespace {
+// acc[x] += k src[x] for x < n: one tap of a separable filter over a row.
+GLINTLAB_AVX2_CLONES void add_scaled(double* __restrict acc, const double* __restrict src, double k, int n) {
+  for (int x = 0; x < n; ++x) acc[x] += k * src[x];
+}
+GLINTLAB_AVX2_CLONES void add_scaled(double* __restrict acc, const float* __restrict src, double k, int n) {
+  for (int x = 0; x < n; ++x) acc[x] += k * double(src[x]);
+}
+}  // namespace
+
 std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   const int w = xyz.width, h = xyz.height;
   const int r = std::max(1, int(std::ceil(3.0 * sigma_px)));
@@ -60,20 +71,13 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   parallel_for(h, [&](long y) {
     std::vector<double> row(size_t(w + 2 * r)), acc(size_t(w), 0.0);
     for (int x = -r; x < w + r; ++x) row[size_t(x + r)] = xyz.at(std::clamp(x, 0, w - 1), int(y), 1);
-    for (int i = -r; i <= r; ++i) {
-      const double ki = k[size_t(i + r)];
-      const double* src = row.data() + (r + i);
-      for (int x = 0; x < w; ++x) acc[size_t(x)] += ki * src[x];
-    }
+    for (int i = -r; i <= r; ++i) add_scaled(acc.data(), row.data() + (r + i), k[size_t(i + r)], w);
     for (int x = 0; x < w; ++x) tmp[size_t(y) * w + x] = float(acc[size_t(x)]);
   });
   parallel_for(h, [&](long y) {
     std::vector<double> acc(size_t(w), 0.0);
-    for (int i = -r; i <= r; ++i) {
-      const double ki = k[size_t(i + r)];
-      const float* src = tmp.data() + size_t(std::clamp(int(y) + i, 0, h - 1)) * w;
-      for (int x = 0; x < w; ++x) acc[size_t(x)] += ki * double(src[x]);
-    }
+    for (int i = -r; i <= r; ++i)
+      add_scaled(acc.data(), tmp.data() + size_t(std::clamp(int(y) + i, 0, h - 1)) * w, k[size_t(i + r)], w);
     for (int x = 0; x < w; ++x) out[size_t(y) * w + x] = float(acc[size_t(x)]);
   });
   return out;
@@ -81,7 +85,7 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
 
 namespace {
 // reproject's work for row y, into out[0 .. width).
-void reproject_row(const Image& motion, const std::vector<float>& prev_distance, double tolerance, int y,
+GLINTLAB_AVX2_CLONES void reproject_row(const Image& motion, const std::vector<float>& prev_distance, double tolerance, int y,
                    Reprojected* out) {
   const int w = motion.width, h = motion.height;
   for (int x = 0; x < w; ++x) {

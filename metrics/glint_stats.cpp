@@ -1,6 +1,6 @@
 #include "metrics/glint_stats.h"
 
-#include "metrics/parallel.h"
+#include "metrics/simd_clones.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +31,7 @@ void check_comparable(const GlintStats& a, const GlintStats& b, const char* who)
 
 }  // namespace
 
-Image local_mean_luminance(const Image& xyz, int window) {
+GLINTLAB_AVX2_CLONES Image local_mean_luminance(const Image& xyz, int window) {
   if (xyz.channels < 2) throw std::invalid_argument("local_mean_luminance: image needs the Y channel");
   if (window < 1 || window % 2 == 0)
     throw std::invalid_argument("local_mean_luminance: window must be odd and >= 1, got " + std::to_string(window));
@@ -110,7 +110,8 @@ double glint_histogram_hellinger(const GlintStats& t, const GlintStats& r) {
 GlintComparison compare_glints(const Image& test_xyz, const Image& ref_xyz, const GlintOptions& o) {
   require_same_size(test_xyz, ref_xyz, "compare_glints");
   GlintComparison c;
-  parallel_for(2, [&](long i) { (i == 0 ? c.test : c.ref) = glint_stats(i == 0 ? test_xyz : ref_xyz, o); });
+  c.test = glint_stats(test_xyz, o);
+  c.ref = glint_stats(ref_xyz, o);
   c.density_difference_per_1000px = c.test.density_per_1000px - c.ref.density_per_1000px;
   c.emd_octaves = glint_histogram_emd_octaves(c.test, c.ref);
   c.hellinger = glint_histogram_hellinger(c.test, c.ref);

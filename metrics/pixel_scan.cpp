@@ -1,5 +1,7 @@
 #include "metrics/pixel_scan.h"
 
+#include "metrics/simd_clones.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -28,6 +30,18 @@ void count_pixels(const Image& image, int nc, std::size_t begin, std::size_t end
   }
 }
 
+// Whether any of v[0 .. n) is NaN, infinite or below zero (-0 is not): on the bits, +0 up to the largest
+// finite float are the patterns below +Inf's 0x7f800000, and -0 is 0x80000000.
+GLINTLAB_AVX2_CLONES bool any_unclean(const float* v, std::size_t n) {
+  unsigned bad = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t u;
+    std::memcpy(&u, v + i, 4);
+    bad |= unsigned(u >= 0x7f800000u) & unsigned(u != 0x80000000u);
+  }
+  return bad != 0;
+}
+
 }  // namespace
 
 PixelScan scan_pixels(const Image& image, int channels) {
@@ -35,22 +49,13 @@ PixelScan scan_pixels(const Image& image, int channels) {
   PixelScan s;
   s.pixels = image.pixel_count();
   // A block of pixels whose every value (all channels, the unscanned ones too) is finite and not below
-  // zero adds nothing: that is one test on the bits (+0 up to the largest finite float are the
-  // patterns below +Inf's 0x7f800000; -0 is 0x80000000), and it vectorises. Only a block where some
-  // value fails it is counted pixel by pixel.
+  // zero adds nothing: one test on the bits, which vectorises. Only a block where some value fails it
+  // is counted pixel by pixel.
   constexpr std::size_t kBlock = 256;
   const std::size_t stride = std::size_t(image.channels);
   for (std::size_t b = 0; b < s.pixels; b += kBlock) {
     const std::size_t end = std::min(s.pixels, b + kBlock);
-    const float* v = image.data.data() + b * stride;
-    const std::size_t nv = (end - b) * stride;
-    unsigned bad = 0;
-    for (std::size_t i = 0; i < nv; ++i) {
-      std::uint32_t u;
-      std::memcpy(&u, v + i, 4);
-      bad |= unsigned(u >= 0x7f800000u) & unsigned(u != 0x80000000u);
-    }
-    if (bad) count_pixels(image, nc, b, end, s);
+    if (any_unclean(image.data.data() + b * stride, (end - b) * stride)) count_pixels(image, nc, b, end, s);
   }
   return s;
 }
