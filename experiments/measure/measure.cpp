@@ -158,8 +158,8 @@ struct Plan {
 
 FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm, const metrics::FrameMetrics& measure) {
   FrameInput in;
-  // The reference on a thread of its own beside the rest: with two cores, while the metrics of the
-  // frame before wait for nothing else, both read.
+  // The reference on a thread of its own beside the tests and the vectors: whenever the metrics of
+  // the frame before leave a core free, two files are decoded at once.
   std::future<ColourFrame> ref;
   if (p.reference)
     ref = std::async(std::launch::async, [&] { return read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space); });

@@ -208,6 +208,7 @@ double run_measure(const fs::path& dir, int frames) {
 // process: the difference is the time a frame takes once the command has started.
 bool measure_section(const fs::path& dir, int w, int h, int frames, bool half) {
   if (!in_child([&] { return write_measure_sequence(dir, w, h, frames, half), true; })) return false;
+  ::sync();  // the files on disk before the runs, so that their writing-back does not share the cores
   const fs::path two = dir / "two_frames_s";
   if (!in_child([&] { return bool(std::ofstream(two) << run_measure(dir, 2)); })) return false;
   return in_child([&] {

@@ -2,9 +2,11 @@
 // written with `"output": {"motion": true}` and read back (every motion convention, depth-only
 // disocclusion, estimated flow, wrong conventions), a real Cycles sequence (tests/data/blender),
 // no reference, resume, and bad input.
+#include "core/util/content_hash.h"
 #include "experiments/cli/check.h"
 #include "experiments/measure/measure.h"
 #include "experiments/measure/motion_convention.h"
+#include "experiments/measure/sequence.h"
 #include "experiments/runner/runner.h"
 #include "metrics/color/image_io.h"
 
@@ -560,4 +562,23 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
   EXPECT_FALSE(std::isnan(cell(rows, "taa", 5, "flicker_ratio")));
   const nlohmann::json s = read_json(scratch("bad-counted") / "summary.json");
   EXPECT_TRUE(s["variants"][0]["metrics"]["deltaE2000"]["mean"].is_null());
+}
+
+// The hash the journal records of every input file: XXH3-128 over the file's bytes in 1 MiB pieces,
+// each length-prefixed (so journals written before the file was hashed in place still resume).
+TEST(FileContentHash, IsTheBytesInMegabytePiecesWhetherMappedOrRead) {
+  test::TempDir dir("file_hash");
+  std::string bytes(size_t(5) << 19, '\0');  // 2.5 MiB
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = char((i * 2654435761u) >> 13);
+  std::ofstream(dir.path() / "f.bin", std::ios::binary) << bytes;
+  core::ContentHash h;
+  for (size_t o = 0; o < bytes.size(); o += size_t(1) << 20)
+    h.add(bytes.data() + o, std::min(size_t(1) << 20, bytes.size() - o));
+  EXPECT_EQ(file_content_hash((dir.path() / "f.bin").string()), h.hex());
+  std::ofstream(dir.path() / "empty.bin");
+  EXPECT_EQ(file_content_hash((dir.path() / "empty.bin").string()), core::ContentHash().hex());
+  bytes[bytes.size() / 2] ^= 1;  // one bit elsewhere: another hash
+  std::ofstream(dir.path() / "g.bin", std::ios::binary) << bytes;
+  EXPECT_NE(file_content_hash((dir.path() / "g.bin").string()), h.hex());
+  EXPECT_THROW(file_content_hash((dir.path() / "missing.bin").string()), std::exception);
 }
