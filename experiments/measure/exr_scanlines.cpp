@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <sys/stat.h>
 #include <memory>
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -114,6 +115,9 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
     std::memcpy(&b, &one, 1);
     if (b != 1) return false;
   }
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  const std::uint64_t file_size = std::uint64_t(st.st_size);  // no chunk may claim more
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = quiet;
   Context ctx;
@@ -173,7 +177,9 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
       if (exr_read_scanline_chunk_info(ctx.c, p, int(y0), &ci) != EXR_ERR_SUCCESS) return false;
       const std::int64_t first = std::max<std::int64_t>(ci.start_y, dw.min.y);
       const std::int64_t last = std::min<std::int64_t>(std::int64_t(ci.start_y) + ci.height - 1, dw.max.y);
-      if (first > last || ci.unpacked_size != size_t(last - first + 1) * line_bytes) return false;
+      if (first > last || ci.unpacked_size != size_t(last - first + 1) * line_bytes || ci.packed_size > file_size ||
+          ci.data_offset > file_size - ci.packed_size)
+        return false;
       packed.resize(ci.packed_size);
       if (exr_read_chunk(ctx.c, p, &ci, packed.data()) != EXR_ERR_SUCCESS) return false;
       const std::uint8_t* bytes = packed.data();
