@@ -23,8 +23,8 @@ constexpr std::size_t kBlock = 256;
 
 namespace {
 // L*a*b* from the white-relative values t = X / X_w, Y / Y_w, Z / Z_w of n <= kBlock pixels.
-GLINTLAB_AVX2_CLONES void lab_of_ratios(const double* tx, const double* ty, const double* tz, std::size_t n, double* L, double* a,
-                   double* b) {
+GLINTLAB_AVX2_CLONES void lab_of_ratios(const double* tx, const double* ty, const double* tz, std::size_t n,
+                                        double* L, double* a, double* b) {
   double rx[kBlock], ry[kBlock], rz[kBlock];
   cbrt_n(tx, rx, n);
   cbrt_n(ty, ry, n);
@@ -39,7 +39,8 @@ GLINTLAB_AVX2_CLONES void lab_of_ratios(const double* tx, const double* ty, cons
 }
 }  // namespace
 
-GLINTLAB_AVX2_CLONES void xyz_to_lab_n(const float* xyz, std::size_t stride, std::size_t count, double* L, double* a, double* b) {
+GLINTLAB_AVX2_CLONES void xyz_to_lab_n(const float* xyz, std::size_t stride, std::size_t count, double* L, double* a,
+                                       double* b) {
   double tx[kBlock], ty[kBlock], tz[kBlock];
   for (std::size_t o = 0; o < count; o += kBlock) {
     const std::size_t n = std::min(kBlock, count - o);
@@ -63,8 +64,8 @@ Lab xyz_to_lab(double X, double Y, double Z) {
 // Sharma et al. 2005, steps 1-3, written as element-wise passes over planes of up to kBlock pairs:
 // the arithmetic passes vectorise (the branches of the paper are selects), and the transcendental
 // functions go through the array math of vector_math.h (libmvec).
-GLINTLAB_AVX2_CLONES void ciede2000_n(const LabPlanes& lab1, const LabPlanes& lab2, double* out, std::size_t count, double kL, double kC,
-                 double kH) {
+GLINTLAB_AVX2_CLONES void ciede2000_n(const LabPlanes& lab1, const LabPlanes& lab2, double* out, std::size_t count,
+                                      double kL, double kC, double kH) {
   double C1p[kBlock], C2p[kBlock], a1p[kBlock], a2p[kBlock], h1p[kBlock], h2p[kBlock], dhp[kBlock], s[kBlock];
   double hbar[kBlock], c1[kBlock], s1[kBlock], e[kBlock], r[kBlock];
   for (std::size_t o = 0; o < count; o += kBlock) {

@@ -85,8 +85,8 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
 
 namespace {
 // reproject's work for row y, into out[0 .. width).
-GLINTLAB_AVX2_CLONES void reproject_row(const Image& motion, const std::vector<float>& prev_distance, double tolerance, int y,
-                   Reprojected* out) {
+GLINTLAB_AVX2_CLONES void reproject_row(const Image& motion, const std::vector<float>& prev_distance,
+                                        double tolerance, int y, Reprojected* out) {
   const int w = motion.width, h = motion.height;
   for (int x = 0; x < w; ++x) {
     Reprojected& r = out[x];

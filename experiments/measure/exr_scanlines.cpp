@@ -4,10 +4,12 @@
 #include <OpenEXR/openexr.h>
 #include <libdeflate.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <sys/stat.h>
-#include <memory>
+#include <vector>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -35,8 +37,9 @@ struct Inflater {
 // definition; OpenEXR's internal_zip.c): a byte predictor (each byte stored as the difference to
 // the one before, plus 128) over the whole chunk, then the two halves of the chunk interleaved
 // (byte 2i from the first half, 2i+1 from the second).
-// Scalar forms first; the SSE2 ones below compute the same bytes 16 at a time (the predictor as a
-// prefix sum within the register, carried from the last byte of the one before).
+// Each has a scalar loop and, where SSE2 is there (every x86-64), a loop over 16 bytes at a time
+// before it that computes the same bytes (the predictor as a prefix sum within the register,
+// carried from the last byte of the one before).
 void undo_zip_predictor(std::uint8_t* t, size_t n) {
   size_t i = 1;
 #if defined(__SSE2__)

@@ -257,7 +257,12 @@ class MeasureProcess {
       bool ok = true;
       if (::read(fd[0], &go, 1) == 1 && go == 'g') {
         char tmpl[] = "/tmp/glintlab_bench_measure_XXXXXX";
-        const fs::path top = keep.empty() ? fs::path(::mkdtemp(tmpl)) : fs::path(keep);
+        const char* made = keep.empty() ? ::mkdtemp(tmpl) : keep.c_str();
+        if (!made) {
+          std::fprintf(stderr, "error: measure section: cannot make a folder under /tmp\n");
+          ::_exit(1);
+        }
+        const fs::path top(made);
         for (bool half : {false, true}) ok = measure_section(top / (half ? "half" : "float"), w, h, frames, half) && ok;
         std::error_code ec;
         if (keep.empty()) fs::remove_all(top, ec);
