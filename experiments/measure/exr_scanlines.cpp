@@ -38,8 +38,9 @@ struct Inflater {
 // the one before, plus 128) over the whole chunk, then the two halves of the chunk interleaved
 // (byte 2i from the first half, 2i+1 from the second).
 // Each has a scalar loop and, where SSE2 is there (every x86-64), a loop over 16 bytes at a time
-// before it that computes the same bytes (the predictor as a prefix sum within the register,
-// carried from the last byte of the one before).
+// before it that computes the same bytes: the predictor as a prefix sum within the register, plus
+// the running sum of the blocks before (`carry`, in every byte). Only that one add is carried from
+// block to block, so the blocks' prefix sums overlap in the CPU.
 void undo_zip_predictor(std::uint8_t* t, size_t n) {
   size_t i = 1;
 #if defined(__SSE2__)
@@ -52,10 +53,9 @@ void undo_zip_predictor(std::uint8_t* t, size_t n) {
       x = _mm_add_epi8(x, _mm_slli_si128(x, 2));
       x = _mm_add_epi8(x, _mm_slli_si128(x, 4));
       x = _mm_add_epi8(x, _mm_slli_si128(x, 8));
-      x = _mm_add_epi8(x, carry);
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(t + i), x);
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(t + i), _mm_add_epi8(x, carry));
       const __m128i last = _mm_unpacklo_epi8(_mm_srli_si128(x, 15), _mm_srli_si128(x, 15));  // byte 15, twice
-      carry = _mm_shuffle_epi32(_mm_shufflelo_epi16(last, 0), 0);                          // in every byte
+      carry = _mm_add_epi8(carry, _mm_shuffle_epi32(_mm_shufflelo_epi16(last, 0), 0));      // in every byte
     }
   }
 #endif
@@ -101,6 +101,44 @@ void halves_to_floats(const std::uint8_t* src, float* dst, size_t stride, size_t
     dst[x * stride] = float(h);
   }
 }
+
+// The common layout: a line's planes (one per channel) to the four channels of RGBA pixels, four
+// pixels at a time (4 x 4 transposes). src[c] is channel c's plane of w samples (a plane of ones for
+// the alpha under R, G, B: no read of what the image holds there), or nullptr to keep what the pixels
+// hold in that channel (one another part of the file gives). Moves and shuffles only: the bits.
+#if defined(__x86_64__)
+inline __m128 kept(const float* px, int c) { return _mm_setr_ps(px[c], px[4 + c], px[8 + c], px[12 + c]); }
+void float_planes_to_rgba(const std::uint8_t* const src[4], float* dst, size_t w) {
+  size_t x = 0;
+  for (; x + 4 <= w; x += 4) {
+    float* px = dst + 4 * x;
+    __m128 v[4];
+    for (int c = 0; c < 4; ++c)
+      v[c] = src[c] ? _mm_loadu_ps(reinterpret_cast<const float*>(src[c] + 4 * x)) : kept(px, c);
+    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
+    for (int j = 0; j < 4; ++j) _mm_storeu_ps(px + 4 * j, v[j]);
+  }
+  for (; x < w; ++x)
+    for (int c = 0; c < 4; ++c)
+      if (src[c]) std::memcpy(dst + 4 * x + c, src[c] + 4 * x, 4);
+}
+__attribute__((target("f16c"))) void half_planes_to_rgba_f16c(const std::uint8_t* const src[4], float* dst, size_t w) {
+  size_t x = 0;
+  for (; x + 4 <= w; x += 4) {
+    float* px = dst + 4 * x;
+    __m128 v[4];
+    for (int c = 0; c < 4; ++c)
+      v[c] = src[c] ? _mm_cvtph_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(src[c] + 2 * x))) : kept(px, c);
+    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
+    for (int j = 0; j < 4; ++j) _mm_storeu_ps(px + 4 * j, v[j]);
+  }
+  for (; x < w; ++x)
+    for (int c = 0; c < 4; ++c)
+      if (src[c]) dst[4 * x + c] = _cvtsh_ss(std::uint16_t(src[c][2 * x] | (src[c][2 * x + 1] << 8)));
+}
+#endif
+
+constexpr float kOne = 1.0f;
 
 struct Wanted {
   int channel = 0;     // index in the part's (alphabetical) channel list
@@ -175,6 +213,25 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
     for (int c = 0; c < list->num_channels; ++c)
       offset[size_t(c) + 1] = offset[size_t(c)] + w * (list->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4);
     const size_t line_bytes = offset.back();
+    // Three or four channels of one type into an RGBA image: the transposing copy.
+    enum class Rgba { kNo, kFloat, kHalf } rgba = Rgba::kNo;
+#if defined(__x86_64__)
+    {
+      static const bool f16c = __builtin_cpu_supports("f16c");
+      const auto& want = plan[size_t(p)];
+      bool one_type = nc == 4 && want.size() >= 3;
+      for (const Wanted& x : want) one_type = one_type && x.type == want[0].type;
+      if (one_type) rgba = want[0].type == EXR_PIXEL_FLOAT ? Rgba::kFloat : f16c ? Rgba::kHalf : Rgba::kNo;
+    }
+#endif
+    std::vector<std::uint8_t> ones;  // a line of 1.0 in the part's type: the channels after the named ones
+    if (rgba == Rgba::kFloat) {
+      ones.resize(4 * w);
+      for (size_t x = 0; x < w; ++x) std::memcpy(&ones[4 * x], &kOne, 4);
+    } else if (rgba == Rgba::kHalf) {
+      ones.resize(2 * w);
+      for (size_t x = 0; x < w; ++x) ones[2 * x] = 0x00, ones[2 * x + 1] = 0x3c;  // half 1.0, little-endian
+    }
     for (std::int64_t y0 = dw.min.y; y0 <= dw.max.y; y0 += lines) {
       exr_chunk_info_t ci;
       if (exr_read_scanline_chunk_info(ctx.c, p, int(y0), &ci) != EXR_ERR_SUCCESS) return false;
@@ -204,6 +261,16 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
       for (std::int64_t y = first; y <= last; ++y) {
         const std::uint8_t* line = bytes + size_t(y - first) * line_bytes;
         float* row = out.data.data() + size_t(y - dw.min.y) * w * nc;
+#if defined(__x86_64__)
+        if (rgba != Rgba::kNo) {
+          const std::uint8_t* src[4] = {nullptr, nullptr, nullptr, nullptr};
+          for (size_t c = channels.size(); c < 4; ++c) src[c] = ones.data();
+          for (const Wanted& want : plan[size_t(p)]) src[want.image_channel] = line + offset[size_t(want.channel)];
+          if (rgba == Rgba::kFloat) float_planes_to_rgba(src, row, w);
+          else half_planes_to_rgba_f16c(src, row, w);
+          continue;
+        }
+#endif
         for (const Wanted& want : plan[size_t(p)]) {
           const std::uint8_t* src = line + offset[size_t(want.channel)];
           float* dst = row + want.image_channel;

@@ -15,11 +15,9 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -390,34 +388,31 @@ ColourFrame read_colour_frame(const FrameFiles& f, size_t index, const metrics::
 }
 
 std::string file_content_hash(const std::string& path) {
+  // read() into one buffer the cache holds, a piece at a time: three times faster than hashing a
+  // mapping of the file (measured on 90 1080p EXRs from the page cache: 0.20 s against 0.65 s,
+  // the mapping's page tables being the cost)
   constexpr size_t kHashPiece = size_t(1) << 20;
-  {  // mapped: the page cache's bytes hashed where they are, not copied first (a 1080p float EXR is 24 MB)
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    struct stat st {};
-    if (fd >= 0 && ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
-      void* m = ::mmap(nullptr, size_t(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
-      ::close(fd);
-      if (m != MAP_FAILED) {
-        core::ContentHash h;  // in the pieces the read below takes: the same hash
-        const char* bytes = static_cast<const char*>(m);
-        for (size_t o = 0; o < size_t(st.st_size); o += kHashPiece)
-          h.add(bytes + o, std::min(kHashPiece, size_t(st.st_size) - o));
-        ::munmap(m, size_t(st.st_size));
-        return h.hex();
-      }
-    } else if (fd >= 0) {
-      ::close(fd);
-    }
-  }
-  std::ifstream in(path, std::ios::binary);  // empty, or not mappable: read
-  if (!in) throw IoError("cannot read '" + path + "' to hash it: " + std::strerror(errno));
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw IoError("cannot read '" + path + "' to hash it: " + std::strerror(errno));
   core::ContentHash h;
   std::vector<char> buf(kHashPiece);
-  while (in) {
-    in.read(buf.data(), std::streamsize(buf.size()));
-    if (in.gcount() > 0) h.add(buf.data(), size_t(in.gcount()));
+  for (;;) {
+    size_t got = 0;  // a whole piece (the hash depends on where pieces end), or what is left
+    while (got < buf.size()) {
+      const ssize_t n = ::read(fd, buf.data() + got, buf.size() - got);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        const int e = errno;
+        ::close(fd);
+        throw IoError("cannot read '" + path + "' to hash it: " + std::strerror(e));
+      }
+      if (n == 0) break;
+      got += size_t(n);
+    }
+    if (got > 0) h.add(buf.data(), got);
+    if (got < buf.size()) break;
   }
-  if (in.bad()) throw IoError("cannot read '" + path + "' to hash it");
+  ::close(fd);
   return h.hex();
 }
 

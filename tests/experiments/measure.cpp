@@ -566,7 +566,7 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
 
 // The hash the journal records of every input file: XXH3-128 over the file's bytes in 1 MiB pieces,
 // each length-prefixed (so journals written before the file was hashed in place still resume).
-TEST(FileContentHash, IsTheBytesInMegabytePiecesWhetherMappedOrRead) {
+TEST(FileContentHash, IsTheBytesInMegabytePieces) {
   test::TempDir dir("file_hash");
   std::string bytes(size_t(5) << 19, '\0');  // 2.5 MiB
   for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = char((i * 2654435761u) >> 13);
