@@ -145,8 +145,10 @@ FlickerReference flicker_reference(const Image& ref_xyz) {
   return r;
 }
 
-std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const FlickerReference& ref,
+std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::shared_ptr<const FlickerReference> shared,
                                                  const Image& motion) {
+  if (!shared) throw std::invalid_argument("FlickerTracker::push: no reference");
+  const FlickerReference& ref = *shared;
   if (test_xyz.width != ref.width || test_xyz.height != ref.height)
     throw std::invalid_argument("FlickerTracker::push: test is " + std::to_string(test_xyz.width) + "x" +
                                 std::to_string(test_xyz.height) + " but the reference " + std::to_string(ref.width) +
@@ -168,6 +170,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
   std::optional<FlickerFrame> result;
   std::vector<float> own_adaptation = adaptation_luminance(test_xyz);
   if (pushed_ > 0) {
+    const FlickerReference& prev_ref = *prev_ref_;
     // Sums per row in parallel, then over rows in order: the same result for any thread count.
     struct Row {
       double ct = 0, cr = 0, cs = 0, emc = 0, e = 0, dt = 0, dr = 0, excess = 0, lag = 0, excess_fixed = 0;
@@ -186,7 +189,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
         const Reprojected& rp = warp[std::size_t(x)];
         if (rp.state != Reprojected::kValid) continue;
         prev[2 * valid] = rp.sample(prev_yt_);
-        prev[2 * valid + 1] = rp.sample(prev_ref_.y);
+        prev[2 * valid + 1] = rp.sample(prev_ref.y);
         ++valid;
       }
       perceptual_luminance_n(prev.data(), prev_pq.data(), 2 * valid);
@@ -194,14 +197,14 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
       for (int x = 0; x < w; ++x) {
         const std::size_t i = std::size_t(y) * w + x;
         // Fixed-pixel terms over every pixel.
-        const double dT = pqt[i] - prev_pqt_[i], dR = ref.pq[i] - prev_ref_.pq[i];
+        const double dT = pqt[i] - prev_pqt_[i], dR = ref.pq[i] - prev_ref.pq[i];
         row.e += std::abs(dT - dR);
         row.dt += std::abs(dT);
         row.dr += std::abs(dR);
         const double denom = double(ref.adaptation[i]) + kContrastEpsilon;
         {  // fixed gaze, at the eye's resolution
           const double fT = std::abs(double(own_adaptation[i]) - prev_ya_test_[i]);
-          const double fR = std::abs(double(ref.adaptation[i]) - prev_ref_.adaptation[i]);
+          const double fR = std::abs(double(ref.adaptation[i]) - prev_ref.adaptation[i]);
           row.excess_fixed += std::max(0.0, fT - fR) / denom;
         }
         // Along the motion.
@@ -223,7 +226,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
         row.cs += std::abs(double(yt[i]) - t_prev) / (double(own_adaptation[i]) + kContrastEpsilon);
         // One-sided, both frames low-passed at the eye's resolution before the difference.
         const double lT = std::abs(double(own_adaptation[i]) - rp.sample(prev_ya_test_));
-        const double lR = std::abs(double(ref.adaptation[i]) - rp.sample(prev_ref_.adaptation));
+        const double lR = std::abs(double(ref.adaptation[i]) - rp.sample(prev_ref.adaptation));
         row.excess += std::max(0.0, lT - lR) / denom;
         row.lag += std::max(0.0, lR - lT) / denom;
         row.emc += std::abs((pqt[i] - ref.pq[i]) - (pq_t_prev - pq_r_prev));
@@ -257,7 +260,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, const Fl
   prev_pqt_ = std::move(pqt);
   prev_dist_ = std::move(dist);
   prev_ya_test_ = std::move(own_adaptation);
-  prev_ref_ = ref;
+  prev_ref_ = std::move(shared);
   ++pushed_;
   return result;
 }
@@ -267,7 +270,7 @@ void FlickerTracker::reset() {
   width_ = height_ = 0;
   prev_yt_.clear();
   prev_pqt_.clear();
-  prev_ref_ = FlickerReference{};
+  prev_ref_.reset();
   prev_dist_.clear();
   prev_ya_test_.clear();
 }

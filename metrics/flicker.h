@@ -67,6 +67,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -145,9 +146,14 @@ class FlickerTracker {
  public:
   // Throws std::invalid_argument when sizes differ, the motion image has fewer
   // than 4 channels, or the size changes between frames.
-  std::optional<FlickerFrame> push(const Image& test_xyz, const FlickerReference& ref, const Image& motion);
+  // The tracker keeps the reference for the next frame: shared, not copied (a 1080p one is 33 MB).
+  std::optional<FlickerFrame> push(const Image& test_xyz, std::shared_ptr<const FlickerReference> ref,
+                                   const Image& motion);
+  std::optional<FlickerFrame> push(const Image& test_xyz, const FlickerReference& ref, const Image& motion) {
+    return push(test_xyz, std::make_shared<const FlickerReference>(ref), motion);
+  }
   std::optional<FlickerFrame> push(const Image& test_xyz, const Image& ref_xyz, const Image& motion) {
-    return push(test_xyz, flicker_reference(ref_xyz), motion);
+    return push(test_xyz, std::make_shared<const FlickerReference>(flicker_reference(ref_xyz)), motion);
   }
 
   const std::vector<FlickerFrame>& frames() const { return frames_; }
@@ -160,7 +166,7 @@ class FlickerTracker {
   int width_ = 0, height_ = 0;
   std::vector<float> prev_yt_, prev_dist_, prev_ya_test_;
   std::vector<double> prev_pqt_;
-  FlickerReference prev_ref_;
+  std::shared_ptr<const FlickerReference> prev_ref_;
   std::vector<FlickerFrame> frames_;
 };
 

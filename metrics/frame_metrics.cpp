@@ -37,7 +37,7 @@ FrameMetrics::Reference FrameMetrics::prepare(std::shared_ptr<const Image> ref_l
   r.metric_xyz = options_.display_view.empty()
                      ? r.xyz
                      : std::make_shared<const Image>(metric_xyz(cm_, *ref_linear, space_, options_));
-  r.flicker = flicker_reference(*r.xyz);
+  r.flicker = std::make_shared<const FlickerReference>(flicker_reference(*r.xyz));
   // The reference side of the per-pixel metrics that have one, converted once for every variant.
   auto measured = [&](const char* m) { return std::find(per_pixel_.begin(), per_pixel_.end(), m) != per_pixel_.end(); };
   if (options_.flip_hdr && measured("flip")) r.flip.emplace(*r.metric_xyz, options_.flip_ppd);

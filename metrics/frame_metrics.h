@@ -45,7 +45,7 @@ class FrameMetrics {
     // Shared, not copied: with the working space XYZ D65 and no display view, both are the frame given.
     std::shared_ptr<const Image> xyz;         // scene-referred XYZ D65
     std::shared_ptr<const Image> metric_xyz;  // what per-pixel metrics compare (display-referred when a view is set)
-    FlickerReference flicker;               // the flicker metric's view of it
+    std::shared_ptr<const FlickerReference> flicker;  // the flicker metric's view of it (trackers keep it)
     std::optional<HdrFlipReference> flip;   // HDR-FLIP's per-exposure state, when FLIP is measured
     std::optional<LabImage> lab;            // L*a*b* of metric_xyz, when ΔE00 is measured
     std::optional<ICtCpImage> ictcp;        // ICtCp of metric_xyz, when ΔE_ITP is measured

@@ -142,7 +142,7 @@ struct FrameInput {
   // before is measured); without a reference each test's own flicker state.
   std::shared_ptr<const Image> base_image;  // the reference (shared with `prepared`), or a copy of test 0 for flow
   std::optional<metrics::FrameMetrics::Reference> prepared;
-  std::vector<metrics::FlickerReference> own;
+  std::vector<std::shared_ptr<const metrics::FlickerReference>> own;
 };
 
 struct Plan {
@@ -173,7 +173,8 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
     in.prepared = measure.prepare(in.base_image);
   } else {
     if (!in.vectors) in.base_image = std::make_shared<const Image>(in.tests[0].image);  // measured too: a copy
-    for (const auto& t : in.tests) in.own.push_back(metrics::flicker_reference(t.image));
+    for (const auto& t : in.tests)
+      in.own.push_back(std::make_shared<const metrics::FlickerReference>(metrics::flicker_reference(t.image)));
   }
   return in;
 }
@@ -482,7 +483,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     std::future<FrameInput> next = read(start);
     std::shared_ptr<const Image> prev_flow_base;  // kept only to estimate flow (no vectors given)
     std::optional<Image> prev_motion_forward;
-    std::vector<double> prev_base_pq;
+    std::shared_ptr<const metrics::FlickerReference> prev_base;  // the motion check's frame before
     for (int k = start; k < count; ++k) {
       FrameInput in = next.get();
       if (k + 1 < count) next = read(k + 1);
@@ -508,13 +509,12 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       }
       // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
       const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
-      const std::vector<metrics::FlickerReference>& own = in.own;
-      const std::vector<double>& base_pq = prepared ? prepared->flicker.pq : own[0].pq;
+      const auto& own = in.own;
+      const std::shared_ptr<const metrics::FlickerReference> base = prepared ? prepared->flicker : own[0];
       metrics::MotionExplained me;
       const double nan = std::nan("");
       me.given = me.negated = me.flip_y = me.flip_x = nan;
-      if (k > 0 && !prev_base_pq.empty())
-        me = metrics::motion_explained(prev_base_pq, base_pq, p.width, p.height, motion);
+      if (k > 0 && prev_base) me = metrics::motion_explained(prev_base->pq, base->pq, p.width, p.height, motion);
       const bool emit_reference = k >= first_missing;
       if (in.reference && emit_reference) {
         ReferenceRecord rr;
@@ -584,7 +584,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         progress.step(detail.str());
       }
       if (!in.vectors) prev_flow_base = in.base_image;
-      prev_base_pq = std::move(prepared ? in.prepared->flicker.pq : in.own[0].pq);  // not needed any more this frame
+      prev_base = base;  // shared with the trackers, which keep it too
     }
   }
 
