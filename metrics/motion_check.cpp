@@ -43,11 +43,14 @@ MotionExplained motion_explained(const std::vector<double>& p0, const std::vecto
     double fixed = 0, cand[4] = {0, 0, 0, 0};
     size_t n = 0;
   };
-  std::vector<Row> rows(static_cast<size_t>(h));
-  parallel_for(h, [&](long yl) {
-    const int y = int(yl);
-    Row& r = rows[size_t(y)];
-    for (int x = 0; x < w; ++x) {
+  // Every second pixel of every second row (kMotionCheckStride): a check of a convention, not a
+  // metric, over a quarter of a million pixels at 1080p, for a quarter of the cost.
+  const int rows_checked = (h + kMotionCheckStride - 1) / kMotionCheckStride;
+  std::vector<Row> rows(static_cast<size_t>(rows_checked));
+  parallel_for(rows_checked, [&](long yl) {
+    const int y = int(yl) * kMotionCheckStride;
+    Row& r = rows[size_t(yl)];
+    for (int x = 0; x < w; x += kMotionCheckStride) {
       const float* m = motion.px(x, y);
       if (!(m[2] > 0.0f) || m[3] < 0.0f) continue;
       const double vx = m[0], vy = m[1];

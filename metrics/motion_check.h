@@ -4,7 +4,8 @@
 // with P the PQ-encoded luminance (Y = 1 at 100 cd/m², as temporal_error) of
 // the reference (or of the test where there is none), the previous frame
 // resampled bilinearly (edges clamped), over the pixels the vectors do not
-// mask (a surface, not disoccluded, on screen). 0: the vectors explain all of
+// mask (a surface, not disoccluded, on screen), on the lattice of every second
+// pixel of every second row (kMotionCheckStride). 0: the vectors explain all of
 // the change; 1: no more than no motion at all; above 1: less.
 // The same for the vectors' three mirror images — negated (−x, −y), y flipped
 // (x, −y) and x flipped (−x, y) — over the same pixels: when a mirror image
@@ -26,6 +27,8 @@ struct MotionExplained {
   double given = 0, negated = 0, flip_y = 0, flip_x = 0;  // ratios as above (NaN: no pixel or no change)
   std::size_t pixels = 0;                                // pixels the ratios are over
 };
+
+constexpr int kMotionCheckStride = 2;
 
 // pq_prev, pq_now: the PQ-encoded luminance planes (w·h) of the two frames,
 // as FlickerReference::pq holds them; motion: the 4-channel image of
