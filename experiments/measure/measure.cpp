@@ -398,6 +398,18 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     return kExitBadInput;
   }
 
+  // ---- the first frame read while the files are hashed: a new run (no --resume) starts at frame 0
+  const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
+  auto read = [&p, &cm, &measure](int k) {
+    return std::async(std::launch::async, [&p, &cm, &measure, k] { return read_inputs(p, size_t(k), cm, measure); });
+  };
+  // The loop's working set in 2 MiB pages: about 280 bytes a pixel and 70 more for each test (peak
+  // resident memory at 1920x1080: 646 MB with one test, 792 MB with two), at most what one call takes.
+  reserve_heap_in_huge_pages(
+      std::min(size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size()), kMaxHugeReservation));
+  std::future<FrameInput> next;
+  if (!o.resume) next = read(0);
+
   // ---- hashes (the journal's identity of this run), then the journal
   nlohmann::json hashes = nlohmann::json::object();
   auto add_hashes = [&](const auto& s) {
@@ -468,19 +480,11 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
   if (o.resume) log << "resume: " << journal->frames().size() << " frame record(s) done\n";
 
   ImageWriter images(out_dir, plan, cm);
-  const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
-  auto read = [&p, &cm, &measure](int k) {
-    return std::async(std::launch::async, [&p, &cm, &measure, k] { return read_inputs(p, size_t(k), cm, measure); });
-  };
   std::vector<metrics::FlickerTracker> trackers(p.tests.size());
   if (first_missing < count) {
-    // The loop's working set in 2 MiB pages: about 280 bytes a pixel and 70 more for each test (peak
-    // resident memory at 1920x1080: 646 MB with one test, 792 MB with two), at most what one call takes.
-    const size_t working_set = size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size());
-    reserve_heap_in_huge_pages(std::min(working_set, kMaxHugeReservation));
     const int start = std::max(0, first_missing - 1);
     Progress progress(log, o.name, int(p.tests.size()) * (count - start));
-    std::future<FrameInput> next = read(start);
+    if (!next.valid()) next = read(start);  // (a new run's frame 0 is being read already)
     std::shared_ptr<const Image> prev_flow_base;  // kept only to estimate flow (no vectors given)
     std::optional<Image> prev_motion_forward;
     std::shared_ptr<const metrics::FlickerReference> prev_base;  // the motion check's frame before
