@@ -136,8 +136,12 @@ std::string vector_layer(MotionConvention c, const FrameHeader& h, const std::st
 struct FrameInput {
   std::optional<ColourFrame> reference;  // images in CIE XYZ D65 (the reference's image moved to base_image)
   std::vector<ColourFrame> tests;
-  std::optional<MotionVectors> vectors;  // from files
-  std::optional<Image> depth;
+  // From the vector files (and depth): the motion image the flicker tracker reads, made here too, the
+  // count of its non-finite vectors, and the vectors to the next frame (for the next frame's check).
+  bool has_vectors = false;
+  Image motion;
+  size_t motion_bad = 0;
+  std::shared_ptr<const Image> forward;
   // The reference's view of the metrics, prepared here too (on the reading thread, while the frame
   // before is measured); without a reference each test's own flicker state.
   std::shared_ptr<const Image> base_image;  // the reference (shared with `prepared`), or a copy of test 0 for flow
@@ -156,7 +160,9 @@ struct Plan {
   int width = 0, height = 0;
 };
 
-FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm, const metrics::FrameMetrics& measure) {
+// prev_forward: the vectors to the next frame of frame k - 1, where the files have them.
+FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm, const metrics::FrameMetrics& measure,
+                       const std::shared_ptr<const Image>& prev_forward) {
   FrameInput in;
   // The reference on a thread of its own beside the tests and the vectors: whenever the metrics of
   // the frame before leave a core free, two files are decoded at once.
@@ -164,15 +170,23 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
   if (p.reference)
     ref = std::async(std::launch::async, [&] { return read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space); });
   for (const auto& t : p.tests) in.tests.push_back(read_colour_frame(t, k, cm, metrics::kXyzD65Space));
-  if (p.motion) in.vectors = convert_motion(p.convention, read_frame_channels(p.motion->paths[k], p.motion->channels),
-                                            p.motion_channels);
-  if (p.depth) in.depth = read_frame_channels(p.depth->paths[k], p.depth->channels);
+  if (p.motion) {
+    MotionVectors v =
+        convert_motion(p.convention, read_frame_channels(p.motion->paths[k], p.motion->channels), p.motion_channels);
+    std::optional<Image> depth;
+    if (p.depth) depth = read_frame_channels(p.depth->paths[k], p.depth->channels);
+    in.motion = flicker_motion(v, depth ? &*depth : nullptr, prev_forward.get());
+    for (size_t i = 0; i < in.motion.pixel_count(); ++i)  // counted; the tracker masks them (off-screen)
+      in.motion_bad += !(std::isfinite(in.motion.data[4 * i]) && std::isfinite(in.motion.data[4 * i + 1]));
+    if (v.forward) in.forward = std::make_shared<const Image>(std::move(*v.forward));
+    in.has_vectors = true;
+  }
   if (ref.valid()) in.reference = ref.get();
   if (in.reference) {
     in.base_image = std::make_shared<const Image>(std::move(in.reference->image));
     in.prepared = measure.prepare(in.base_image);
   } else {
-    if (!in.vectors) in.base_image = std::make_shared<const Image>(in.tests[0].image);  // measured too: a copy
+    if (!in.has_vectors) in.base_image = std::make_shared<const Image>(in.tests[0].image);  // measured too: a copy
     for (const auto& t : in.tests)
       in.own.push_back(std::make_shared<const metrics::FlickerReference>(metrics::flicker_reference(t.image)));
   }
@@ -400,15 +414,17 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
 
   // ---- the first frame read while the files are hashed: a new run (no --resume) starts at frame 0
   const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
-  auto read = [&p, &cm, &measure](int k) {
-    return std::async(std::launch::async, [&p, &cm, &measure, k] { return read_inputs(p, size_t(k), cm, measure); });
+  auto read = [&p, &cm, &measure](int k, std::shared_ptr<const Image> prev_forward) {
+    return std::async(std::launch::async, [&p, &cm, &measure, k, prev_forward] {
+      return read_inputs(p, size_t(k), cm, measure, prev_forward);
+    });
   };
   // The loop's working set in 2 MiB pages: about 280 bytes a pixel and 70 more for each test (peak
-  // resident memory at 1920x1080: 646 MB with one test, 792 MB with two), at most what one call takes.
+  // resident memory at 1920x1080: 630–670 MB with one test, 783 MB with two), at most what one call takes.
   reserve_heap_in_huge_pages(
       std::min(size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size()), kMaxHugeReservation));
   std::future<FrameInput> next;
-  if (!o.resume) next = read(0);
+  if (!o.resume) next = read(0, nullptr);
 
   // ---- hashes (the journal's identity of this run), then the journal
   nlohmann::json hashes = nlohmann::json::object();
@@ -484,20 +500,17 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
   if (first_missing < count) {
     const int start = std::max(0, first_missing - 1);
     Progress progress(log, o.name, int(p.tests.size()) * (count - start));
-    if (!next.valid()) next = read(start);  // (a new run's frame 0 is being read already)
+    if (!next.valid()) next = read(start, nullptr);  // (a new run's frame 0 is being read already)
     std::shared_ptr<const Image> prev_flow_base;  // kept only to estimate flow (no vectors given)
-    std::optional<Image> prev_motion_forward;
     std::shared_ptr<const metrics::FlickerReference> prev_base;  // the motion check's frame before
     for (int k = start; k < count; ++k) {
       FrameInput in = next.get();
-      if (k + 1 < count) next = read(k + 1);
+      if (k + 1 < count) next = read(k + 1, in.forward);
       // ---- the motion of frame k in glintlab's convention, with its mask
       Image motion;
-      size_t motion_bad = 0;
-      if (in.vectors) {
-          motion = flicker_motion(*in.vectors, in.depth ? &*in.depth : nullptr,
-                                prev_motion_forward ? &*prev_motion_forward : nullptr);
-        prev_motion_forward = in.vectors->forward;
+      const size_t motion_bad = in.motion_bad;
+      if (in.has_vectors) {
+        motion = std::move(in.motion);
       } else if (k > 0 && prev_flow_base) {
         metrics::FlowOptions flow;
         flow.channel = 1;  // Y of XYZ
@@ -506,10 +519,6 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       } else {
         motion = Image(p.width, p.height, 4, 1.0f);
         for (size_t i = 0; i < motion.pixel_count(); ++i) motion.data[4 * i] = motion.data[4 * i + 1] = 0.0f;
-      }
-      if (in.vectors) {  // NaN/Inf vectors are counted; the tracker masks them (off-screen)
-        for (size_t i = 0; i < motion.pixel_count(); ++i)
-          motion_bad += !(std::isfinite(motion.data[4 * i]) && std::isfinite(motion.data[4 * i + 1]));
       }
       // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
       const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
@@ -587,7 +596,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         detail << rec.name << " frame " << p.numbers[size_t(k)] << (k < first_missing ? " (replay)" : "");
         progress.step(detail.str());
       }
-      if (!in.vectors) prev_flow_base = in.base_image;
+      if (!in.has_vectors) prev_flow_base = in.base_image;
       prev_base = base;  // shared with the trackers, which keep it too
     }
   }
