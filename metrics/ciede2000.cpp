@@ -164,7 +164,7 @@ Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz) {
 LabImage lab_image(const Image& xyz) {
   if (xyz.channels < 3) throw std::invalid_argument("lab_image: the image needs >= 3 channels (X, Y, Z)");
   const std::size_t n = xyz.pixel_count(), w = std::size_t(xyz.width);
-  LabImage out{xyz.width, xyz.height, std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
+  LabImage out{xyz.width, xyz.height, NoFillVector<double>(n), NoFillVector<double>(n), NoFillVector<double>(n)};
   parallel_for(long(xyz.height), [&](long y) {
     const std::size_t o = std::size_t(y) * w;
     xyz_to_lab_n(xyz.data.data() + o * xyz.channels, std::size_t(xyz.channels), w, &out.L[o], &out.a[o], &out.b[o]);
@@ -174,7 +174,7 @@ LabImage lab_image(const Image& xyz) {
 
 Image ciede2000_map(const Image& test_xyz, const LabImage& ref_lab) {
   require_reference_size(test_xyz, ref_lab.width, ref_lab.height, "ciede2000_map");
-  Image m(test_xyz.width, test_xyz.height, 1);
+  Image m = Image::unfilled(test_xyz.width, test_xyz.height, 1);  // every pixel written below
   const std::size_t w = std::size_t(test_xyz.width), nc = std::size_t(test_xyz.channels);
   parallel_for(long(test_xyz.height), [&](long y) {
     // The row a block at a time: the test's L*a*b* as planes beside the reference's, then ΔE00.

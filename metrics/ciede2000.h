@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/util/image.h"
+#include "core/util/no_fill_vector.h"
 
 namespace glintlab::metrics {
 
@@ -86,7 +87,7 @@ Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz);
 // as planes (what ciede2000_n reads).
 struct LabImage {
   int width = 0, height = 0;
-  std::vector<double> L, a, b;
+  NoFillVector<double> L, a, b;
 };
 LabImage lab_image(const Image& xyz);
 // Equals ciede2000_map(test_xyz, ref_xyz) exactly for ref_lab = lab_image(ref_xyz).

@@ -28,7 +28,7 @@ double perceptual_luminance(double Y, double reference_nits) {
 
 namespace {
 // Y (channel 1) of an XYZ image and its perceptual_luminance, in rows of work spread over the threads.
-void luminance_planes(const Image& xyz, std::vector<float>& y, std::vector<double>& pq) {
+void luminance_planes(const Image& xyz, NoFillVector<float>& y, NoFillVector<double>& pq) {
   const std::size_t w = std::size_t(xyz.width), n = xyz.pixel_count();
   y.resize(n);
   pq.resize(n);
@@ -56,7 +56,7 @@ GLINTLAB_AVX2_CLONES void add_scaled(double* __restrict acc, const float* __rest
 }
 }  // namespace
 
-std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
+NoFillVector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   const int w = xyz.width, h = xyz.height;
   const int r = std::max(1, int(std::ceil(3.0 * sigma_px)));
   std::vector<double> k(size_t(2 * r + 1));
@@ -67,7 +67,7 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   // taps per pixel would add them, so the result is the same to the bit): the inner loops run over
   // contiguous x and vectorise. Edges clamped: the horizontal pass reads a copy of the row padded with
   // its end values, the vertical one the clamped rows.
-  std::vector<float> tmp(size_t(w) * h), out(size_t(w) * h);
+  NoFillVector<float> tmp(size_t(w) * h), out(size_t(w) * h);  // every value written below
   parallel_for(h, [&](long y) {
     std::vector<double> row(size_t(w + 2 * r)), acc(size_t(w), 0.0);
     for (int x = -r; x < w + r; ++x) row[size_t(x + r)] = xyz.at(std::clamp(x, 0, w - 1), int(y), 1);
@@ -85,7 +85,7 @@ std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
 
 namespace {
 // reproject's work for row y, into out[0 .. width).
-GLINTLAB_AVX2_CLONES void reproject_row(const Image& motion, const std::vector<float>& prev_distance,
+GLINTLAB_AVX2_CLONES void reproject_row(const Image& motion, const float* prev_distance,
                                         double tolerance, int y, Reprojected* out) {
   const int w = motion.width, h = motion.height;
   for (int x = 0; x < w; ++x) {
@@ -131,7 +131,7 @@ std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>
     throw std::invalid_argument("reproject: the previous distances and the motion image differ in size");
   std::vector<Reprojected> out(motion.pixel_count());
   parallel_for(motion.height, [&](long y) {
-    reproject_row(motion, prev_distance, tolerance, int(y), out.data() + std::size_t(y) * motion.width);
+    reproject_row(motion, prev_distance.data(), tolerance, int(y), out.data() + std::size_t(y) * motion.width);
   });
   return out;
 }
@@ -163,12 +163,12 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
                                 " but the sequence is " + std::to_string(width_) + "x" + std::to_string(height_));
   const int w = test_xyz.width, h = test_xyz.height;
   const std::size_t n = test_xyz.pixel_count();
-  std::vector<float> yt, dist(n);
-  std::vector<double> pqt;
+  NoFillVector<float> yt, dist(n);
+  NoFillVector<double> pqt;
   luminance_planes(test_xyz, yt, pqt);
   for (std::size_t i = 0; i < n; ++i) dist[i] = motion.data[i * motion.channels + 2];
   std::optional<FlickerFrame> result;
-  std::vector<float> own_adaptation = adaptation_luminance(test_xyz);
+  NoFillVector<float> own_adaptation = adaptation_luminance(test_xyz);
   if (pushed_ > 0) {
     const FlickerReference& prev_ref = *prev_ref_;
     // Sums per row in parallel, then over rows in order: the same result for any thread count.
@@ -181,7 +181,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
       Row& row = rows[size_t(y)];
       // Where the row's pixels were in frame t-1 (reproject's, a row at a time).
       std::vector<Reprojected> warp(static_cast<std::size_t>(w));
-      reproject_row(motion, prev_dist_, kDisocclusionTolerance, int(y), warp.data());
+      reproject_row(motion, prev_dist_.data(), kDisocclusionTolerance, int(y), warp.data());
       // The previous frames resampled along the motion at the row's valid pixels, and their PQ in one call.
       std::vector<double> prev(2 * std::size_t(w)), prev_pq(2 * std::size_t(w));
       std::size_t valid = 0;

@@ -72,6 +72,7 @@
 #include <vector>
 
 #include "core/util/image.h"
+#include "core/util/no_fill_vector.h"
 
 namespace glintlab::metrics {
 
@@ -109,7 +110,7 @@ struct FlickerFrame {
 
 // The Gaussian low-pass of the luminance (channel 1 of XYZ) with σ in pixels,
 // truncated at 3σ, edges clamped: the adaptation luminance Y_a.
-std::vector<float> adaptation_luminance(const Image& xyz, double sigma_px = kAdaptationSigmaPx);
+NoFillVector<float> adaptation_luminance(const Image& xyz, double sigma_px = kAdaptationSigmaPx);
 
 // Where each pixel of frame t was in frame t-1 (the renderer's motion image of
 // frame t and the distances of frame t-1's motion image): either masked, or
@@ -120,7 +121,8 @@ struct Reprojected {
   unsigned idx[4] = {0, 0, 0, 0};  // pixel indices into frame t-1
   float weight[4] = {0, 0, 0, 0};
   // The bilinear value of a per-pixel quantity of frame t-1 at this position.
-  double sample(const std::vector<float>& prev) const {
+  template <typename Plane>  // a vector of floats, one per pixel
+  double sample(const Plane& prev) const {
     double v = 0.0;
     for (int k = 0; k < 4; ++k) v += double(weight[k]) * prev[idx[k]];
     return v;
@@ -135,8 +137,8 @@ std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>
 // every variant measured against it.
 struct FlickerReference {
   int width = 0, height = 0;
-  std::vector<float> y, adaptation;
-  std::vector<double> pq;
+  NoFillVector<float> y, adaptation;
+  NoFillVector<double> pq;
 };
 FlickerReference flicker_reference(const Image& ref_xyz);
 
@@ -164,8 +166,8 @@ class FlickerTracker {
  private:
   std::size_t pushed_ = 0;
   int width_ = 0, height_ = 0;
-  std::vector<float> prev_yt_, prev_dist_, prev_ya_test_;
-  std::vector<double> prev_pqt_;
+  NoFillVector<float> prev_yt_, prev_dist_, prev_ya_test_;
+  NoFillVector<double> prev_pqt_;
   std::shared_ptr<const FlickerReference> prev_ref_;
   std::vector<FlickerFrame> frames_;
 };

@@ -25,7 +25,7 @@ struct Tap {
   }
 };
 
-double bilinear(const std::vector<double>& p, int w, const Tap& tx, const Tap& ty) {
+double bilinear(const NoFillVector<double>& p, int w, const Tap& tx, const Tap& ty) {
   auto at = [&](int x, int y) { return p[size_t(y) * size_t(w) + size_t(x)]; };
   const double fx = tx.f, fy = ty.f;
   return (1 - fx) * (1 - fy) * at(tx.i0, ty.i0) + fx * (1 - fy) * at(tx.i1, ty.i0) + (1 - fx) * fy * at(tx.i0, ty.i1) +
@@ -34,7 +34,7 @@ double bilinear(const std::vector<double>& p, int w, const Tap& tx, const Tap& t
 
 }  // namespace
 
-MotionExplained motion_explained(const std::vector<double>& p0, const std::vector<double>& p1, int w, int h,
+MotionExplained motion_explained(const NoFillVector<double>& p0, const NoFillVector<double>& p1, int w, int h,
                                  const Image& motion) {
   const size_t n = size_t(w) * size_t(h);
   if (p0.size() != n || p1.size() != n || motion.width != w || motion.height != h || motion.channels < 4)

@@ -16,6 +16,7 @@
 #pragma once
 
 #include "core/util/image.h"
+#include "core/util/no_fill_vector.h"
 
 #include <cstddef>
 #include <string>
@@ -33,7 +34,7 @@ constexpr int kMotionCheckStride = 2;
 // pq_prev, pq_now: the PQ-encoded luminance planes (w·h) of the two frames,
 // as FlickerReference::pq holds them; motion: the 4-channel image of
 // metrics/flicker.h (xy = v, z <= 0 no surface, w < 0 masked).
-MotionExplained motion_explained(const std::vector<double>& pq_prev, const std::vector<double>& pq_now, int width,
+MotionExplained motion_explained(const NoFillVector<double>& pq_prev, const NoFillVector<double>& pq_now, int width,
                                  int height, const Image& motion);
 
 // The relative margin a mirror image must win by before the vectors are

@@ -172,7 +172,7 @@ void record_readback(VkCommandBuffer cmd, const Image2D& img, const Buffer& stag
                        nullptr);
 }
 
-std::vector<float> unpack_readback(const Image2D& img, const Buffer& staging) {
+NoFillVector<float> unpack_readback(const Image2D& img, const Buffer& staging) {
   const uint32_t w = img.width(), h = img.height();
   const uint32_t bpp = bytes_per_pixel(img.format());
   const VkDeviceSize pitch = padded_row_pitch(w, img.format());
@@ -181,9 +181,9 @@ std::vector<float> unpack_readback(const Image2D& img, const Buffer& staging) {
   if (img.format() != VK_FORMAT_R16G16B16A16_SFLOAT && pitch == VkDeviceSize(w) * bpp) {
     // Rows without padding: one copy into the vector, not a zero-fill and then a copy.
     const auto* first = reinterpret_cast<const float*>(base);
-    return std::vector<float>(first, first + size_t(w) * h * nc);
+    return NoFillVector<float>(first, first + size_t(w) * h * nc);
   }
-  std::vector<float> out(size_t(w) * h * nc);
+  NoFillVector<float> out(size_t(w) * h * nc);  // every row written below
   for (uint32_t y = 0; y < h; ++y) {
     const unsigned char* row = base + pitch * y;
     float* dst = out.data() + size_t(y) * w * nc;
@@ -200,7 +200,7 @@ std::vector<float> unpack_readback(const Image2D& img, const Buffer& staging) {
   return out;
 }
 
-std::vector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout) {
+NoFillVector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout) {
   Buffer staging = make_readback_buffer(ctx, img);
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
     if (current_layout != VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)

@@ -2,6 +2,7 @@
 // move data between them and the host. Nothing here knows about passes.
 #pragma once
 
+#include "core/util/no_fill_vector.h"
 #include "core/vk/handle.h"
 #include "core/vk/vk_context.h"
 
@@ -83,11 +84,11 @@ uint32_t channel_count(VkFormat format);
 // pixels as tightly packed 32-bit floats (RGBA16F is widened exactly).
 Buffer make_readback_buffer(const VkContext& ctx, const Image2D& img);
 void record_readback(VkCommandBuffer cmd, const Image2D& img, const Buffer& staging);
-std::vector<float> unpack_readback(const Image2D& img, const Buffer& staging);
+NoFillVector<float> unpack_readback(const Image2D& img, const Buffer& staging);
 
 // Copies mip 0 of a colour image (in TRANSFER_SRC layout) to host memory as
 // tightly packed 32-bit floats (RGBA16F is widened). Honours the padded row pitch.
-std::vector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout);
+NoFillVector<float> read_back(const VkContext& ctx, const Image2D& img, VkImageLayout current_layout);
 
 // Uploads tightly packed RGBA32F pixels into the given mip of an RGBA32F image
 // and leaves every mip in SHADER_READ_ONLY layout after the last call.

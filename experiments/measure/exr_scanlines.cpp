@@ -195,6 +195,7 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
   if (!inflater.d) return false;
   std::vector<std::uint8_t> packed, inflated, unpacked;
   const size_t nc = size_t(out.channels), w = size_t(out.width);
+  bool ones_written = false;  // the channels after the named ones (a part read by the transposing copy writes them)
   for (int p = 0; p < parts; ++p) {
     if (plan[size_t(p)].empty()) continue;
     exr_storage_t storage;
@@ -224,6 +225,7 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
       if (one_type) rgba = want[0].type == EXR_PIXEL_FLOAT ? Rgba::kFloat : f16c ? Rgba::kHalf : Rgba::kNo;
     }
 #endif
+    ones_written = ones_written || rgba != Rgba::kNo;
     std::vector<std::uint8_t> ones;  // a line of 1.0 in the part's type: the channels after the named ones
     if (rgba == Rgba::kFloat) {
       ones.resize(4 * w);
@@ -283,6 +285,9 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
       }
     }
   }
+  if (!ones_written)
+    for (size_t i = 0; i < out.pixel_count(); ++i)
+      for (size_t c = channels.size(); c < nc; ++c) out.data[i * nc + c] = 1.0f;
   return true;
 }
 

@@ -18,10 +18,10 @@ namespace glintlab {
 
 // Reads the named channels (each from the first part, in file order, of size
 // width x height whose channel list has it) into `out` (width x height x
-// image_channels floats, the channels after the named ones already 1): channel
-// k of every pixel from channels[k]. Returns true when done; false when the file is not one this
-// path reads, or is damaged: then read it with OpenImageIO, which writes
-// every named channel again and names what is wrong with a damaged file.
+// image_channels floats, any values): channel k of every pixel from
+// channels[k], the channels after them 1. Returns true when every value is
+// written; false when the file is not one this path reads, or is damaged: then
+// read it with OpenImageIO, which names what is wrong with a damaged file.
 bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out);
 
 }  // namespace glintlab

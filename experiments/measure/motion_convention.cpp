@@ -38,7 +38,7 @@ void unit_scale(const Mapping& m, int w, int h, double* ux, double* uy) {
 
 // stored 2-vectors (channels c0, c0 + 1 of raw) -> glintlab pixels, or the inverse.
 Image map_vectors(const Image& raw, int c0, const Mapping& m, bool inverse) {
-  Image out(raw.width, raw.height, 2);
+  Image out = Image::unfilled(raw.width, raw.height, 2);  // every pixel written below
   double ux = 1, uy = 1;
   unit_scale(m, raw.width, raw.height, &ux, &uy);
   const double sx = m.sign * ux, sy = m.sign * (m.y_up ? -1.0 : 1.0) * uy;
@@ -117,7 +117,7 @@ MotionVectors convert_motion(MotionConvention c, const Image& raw, const MotionC
     next += 2;
   }
   if (!ch.distances.empty()) {
-    Image d(raw.width, raw.height, 2);
+    Image d = Image::unfilled(raw.width, raw.height, 2);
     for (size_t i = 0; i < raw.pixel_count(); ++i)
       for (int k = 0; k < 2; ++k) d.data[2 * i + size_t(k)] = raw.data[i * size_t(raw.channels) + size_t(next + k)];
     v.distances = std::move(d);
@@ -145,7 +145,7 @@ Image to_convention(MotionConvention c, const MotionVectors& v) {
 
 Image flicker_motion(const MotionVectors& v, const Image* depth_now, const Image* prev_forward) {
   const int w = v.backward.width, h = v.backward.height;
-  Image out(w, h, 4);
+  Image out = Image::unfilled(w, h, 4);  // all four channels of every pixel written below
   metrics::parallel_for(h, [&](long yl) {
     const int y = int(yl);
     for (int x = 0; x < w; ++x) {

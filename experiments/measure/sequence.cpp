@@ -263,8 +263,9 @@ std::vector<std::string> colour_channels(const FrameHeader& header, const std::s
 Image read_frame_channels(const std::string& path, const std::vector<std::string>& channels, int image_channels) {
   const FrameHeader h = read_frame_header(path);
   const int nc = std::max(image_channels, int(channels.size()));
-  Image out(h.width, h.height, nc, nc > int(channels.size()) ? 1.0f : 0.0f);
-  if (read_exr_scanlines(path, channels, out)) return out;
+  Image out = Image::unfilled(h.width, h.height, nc);
+  if (read_exr_scanlines(path, channels, out)) return out;  // every value written
+  std::fill(out.data.begin(), out.data.end(), nc > int(channels.size()) ? 1.0f : 0.0f);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw ConfigError("'" + path + "': " + OIIO::geterror());
   std::vector<bool> done(channels.size(), false);

@@ -16,10 +16,13 @@ namespace glintlab {
 
 core::Environment prepare_environment(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
   core::Environment env = core::make_environment(spec.sky);
-  Image sky(env.sky.width, env.sky.height, 3);
-  sky.data = env.sky.rgb;
+  Image sky;
+  sky.width = env.sky.width;
+  sky.height = env.sky.height;
+  sky.channels = 3;
+  sky.data.assign(env.sky.rgb.begin(), env.sky.rgb.end());
   cm.convert(sky, env.sky.color_space, spec.working_space);
-  env.sky.rgb = std::move(sky.data);
+  env.sky.rgb.assign(sky.data.begin(), sky.data.end());
   env.sky.color_space = spec.working_space;
   env.sun.color = cm.convert_color(env.sun.color, env.sun.color_space, spec.working_space);
   env.sun.color_space = spec.working_space;

@@ -74,7 +74,7 @@ TEST(Flicker, AdaptationLuminanceIsANormalisedGaussian) {
   // A single bright pixel spreads into a normalised 2-D Gaussian of sigma 2 px.
   Image im = frame_y(31, 31, std::vector<float>(31 * 31, 0.0f));
   im.at(15, 15, 1) = 1.0f;
-  std::vector<float> ya = adaptation_luminance(im, 2.0);
+  const auto ya = adaptation_luminance(im, 2.0);
   double sum = 0.0;
   for (float v : ya) sum += v;
   EXPECT_NEAR(sum, 1.0, 1e-5);
@@ -131,7 +131,7 @@ TEST(Flicker, HandComputedContrastAlongTheMotion) {
   // Pixel 0 samples x = -0.5: off-screen. Pixels 1 and 2 sample x = 0.5 and 1.5.
   EXPECT_EQ(f->valid_px, 2u);
   EXPECT_EQ(f->disoccluded_px, 1u);
-  const std::vector<float> ya = adaptation_luminance(frame_y(w, h, r1));
+  const auto ya = adaptation_luminance(frame_y(w, h, r1));
   const double ct = (std::abs(4.0 - 2.0) / (ya[1] + kContrastEpsilon) + std::abs(1.0 - 4.0) / (ya[2] + kContrastEpsilon)) / 2;
   const double cr = (std::abs(1.0 - 1.5) / (ya[1] + kContrastEpsilon) + std::abs(1.0 - 2.5) / (ya[2] + kContrastEpsilon)) / 2;
   EXPECT_NEAR(f->mean_contrast_test, ct, 1e-6);

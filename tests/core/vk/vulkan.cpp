@@ -156,7 +156,7 @@ TEST(Readback, Rgba32fPixelsComeBackInPlaceWithAndWithoutRowPadding) {
     px[5] = std::numeric_limits<float>::infinity();
     px[px.size() - 2] = -0.0f;
     core::upload_rgba32f_mips(ctx, img, {px});
-    const std::vector<float> back = core::read_back(ctx, img, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const auto back = core::read_back(ctx, img, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     ASSERT_EQ(back.size(), px.size()) << w;
     EXPECT_EQ(std::memcmp(back.data(), px.data(), px.size() * sizeof(float)), 0) << w;
   }
