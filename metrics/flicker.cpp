@@ -193,44 +193,51 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
         ++valid;
       }
       perceptual_luminance_n(prev.data(), prev_pq.data(), 2 * valid);
+      // The row's sums in locals (kept in registers: a Row in memory may alias the planes), each in
+      // x order; the five terms over the reference's adaptation luminance share one reciprocal.
+      double e = 0, dt = 0, dr = 0, excess_fixed = 0, ct = 0, cr = 0, cs = 0, excess = 0, lag = 0, emc = 0;
+      std::size_t n_valid = 0, n_disoccluded = 0, n_background = 0;
       std::size_t k = 0;  // the next valid pixel's entry
       for (int x = 0; x < w; ++x) {
         const std::size_t i = std::size_t(y) * w + x;
         // Fixed-pixel terms over every pixel.
         const double dT = pqt[i] - prev_pqt_[i], dR = ref.pq[i] - prev_ref.pq[i];
-        row.e += std::abs(dT - dR);
-        row.dt += std::abs(dT);
-        row.dr += std::abs(dR);
-        const double denom = double(ref.adaptation[i]) + kContrastEpsilon;
+        e += std::abs(dT - dR);
+        dt += std::abs(dT);
+        dr += std::abs(dR);
+        const double inv_denom = 1.0 / (double(ref.adaptation[i]) + kContrastEpsilon);
         {  // fixed gaze, at the eye's resolution
           const double fT = std::abs(double(own_adaptation[i]) - prev_ya_test_[i]);
           const double fR = std::abs(double(ref.adaptation[i]) - prev_ref.adaptation[i]);
-          row.excess_fixed += std::max(0.0, fT - fR) / denom;
+          excess_fixed += std::max(0.0, fT - fR) * inv_denom;
         }
         // Along the motion.
         const Reprojected& rp = warp[std::size_t(x)];
         if (rp.state == Reprojected::kBackground) {
-          ++row.background;
+          ++n_background;
           continue;
         }
         if (rp.state == Reprojected::kDisoccluded) {
-          ++row.disoccluded;
+          ++n_disoccluded;
           continue;
         }
         const double t_prev = prev[2 * k], r_prev = prev[2 * k + 1];
         const double pq_t_prev = prev_pq[2 * k], pq_r_prev = prev_pq[2 * k + 1];
         ++k;
-        ++row.valid;
-        row.ct += std::abs(double(yt[i]) - t_prev) / denom;
-        row.cr += std::abs(double(ref.y[i]) - r_prev) / denom;
-        row.cs += std::abs(double(yt[i]) - t_prev) / (double(own_adaptation[i]) + kContrastEpsilon);
+        ++n_valid;
+        ct += std::abs(double(yt[i]) - t_prev) * inv_denom;
+        cr += std::abs(double(ref.y[i]) - r_prev) * inv_denom;
+        cs += std::abs(double(yt[i]) - t_prev) / (double(own_adaptation[i]) + kContrastEpsilon);
         // One-sided, both frames low-passed at the eye's resolution before the difference.
         const double lT = std::abs(double(own_adaptation[i]) - rp.sample(prev_ya_test_));
         const double lR = std::abs(double(ref.adaptation[i]) - rp.sample(prev_ref.adaptation));
-        row.excess += std::max(0.0, lT - lR) / denom;
-        row.lag += std::max(0.0, lR - lT) / denom;
-        row.emc += std::abs((pqt[i] - ref.pq[i]) - (pq_t_prev - pq_r_prev));
+        excess += std::max(0.0, lT - lR) * inv_denom;
+        lag += std::max(0.0, lR - lT) * inv_denom;
+        emc += std::abs((pqt[i] - ref.pq[i]) - (pq_t_prev - pq_r_prev));
       }
+      row.e = e, row.dt = dt, row.dr = dr, row.excess_fixed = excess_fixed;
+      row.ct = ct, row.cr = cr, row.cs = cs, row.excess = excess, row.lag = lag, row.emc = emc;
+      row.valid = n_valid, row.disoccluded = n_disoccluded, row.background = n_background;
     });
     FlickerFrame f;
     double s_ct = 0, s_cr = 0, s_cs = 0, s_emc = 0, s_e = 0, s_dt = 0, s_dr = 0, s_x = 0, s_l = 0, s_xf = 0;
