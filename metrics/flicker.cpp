@@ -14,7 +14,7 @@
 namespace glintlab::metrics {
 
 GLINTLAB_AVX2_CLONES void perceptual_luminance_n(const double* Y, double* out, std::size_t n, double reference_nits) {
-  std::vector<double> nits(n);
+  NoFillVector<double> nits(n);  // every value written next
   for (std::size_t i = 0; i < n; ++i) nits[i] = std::isnan(Y[i]) ? 0.0 : std::max(Y[i], 0.0) * reference_nits;
   pq_inverse_eotf_n(nits.data(), nits.data(), n);
   for (std::size_t i = 0; i < n; ++i) out[i] = std::isnan(Y[i]) ? Y[i] : nits[i];
@@ -69,7 +69,8 @@ NoFillVector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
   // its end values, the vertical one the clamped rows.
   NoFillVector<float> tmp(size_t(w) * h), out(size_t(w) * h);  // every value written below
   parallel_for(h, [&](long y) {
-    std::vector<double> row(size_t(w + 2 * r)), acc(size_t(w), 0.0);
+    NoFillVector<double> row(size_t(w + 2 * r));  // every value written next
+    std::vector<double> acc(size_t(w), 0.0);
     for (int x = -r; x < w + r; ++x) row[size_t(x + r)] = xyz.at(std::clamp(x, 0, w - 1), int(y), 1);
     for (int i = -r; i <= r; ++i) add_scaled(acc.data(), row.data() + (r + i), k[size_t(i + r)], w);
     for (int x = 0; x < w; ++x) tmp[size_t(y) * w + x] = float(acc[size_t(x)]);
@@ -179,11 +180,13 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
     std::vector<Row> rows(static_cast<size_t>(h));
     parallel_for(h, [&](long y) {
       Row& row = rows[size_t(y)];
-      // Where the row's pixels were in frame t-1 (reproject's, a row at a time).
-      std::vector<Reprojected> warp(static_cast<std::size_t>(w));
+      // Where the row's pixels were in frame t-1 (reproject's, a row at a time, into the thread's own
+      // row buffer: reproject_row writes every entry).
+      static thread_local std::vector<Reprojected> warp;
+      warp.resize(static_cast<std::size_t>(w));
       reproject_row(motion, prev_dist_.data(), kDisocclusionTolerance, int(y), warp.data());
       // The previous frames resampled along the motion at the row's valid pixels, and their PQ in one call.
-      std::vector<double> prev(2 * std::size_t(w)), prev_pq(2 * std::size_t(w));
+      NoFillVector<double> prev(2 * std::size_t(w)), prev_pq(2 * std::size_t(w));  // the first 2 valid written
       std::size_t valid = 0;
       for (int x = 0; x < w; ++x) {
         const Reprojected& rp = warp[std::size_t(x)];
