@@ -1,5 +1,6 @@
 #include "metrics/glint_stats.h"
 
+#include "metrics/parallel.h"
 #include "metrics/simd_clones.h"
 
 #include <algorithm>
@@ -31,30 +32,43 @@ void check_comparable(const GlintStats& a, const GlintStats& b, const char* who)
 
 }  // namespace
 
-GLINTLAB_AVX2_CLONES Image local_mean_luminance(const Image& xyz, int window) {
+namespace {
+// dst[x] += src[x] for x < n: one row of the summed-area table's sums down the columns.
+GLINTLAB_AVX2_CLONES void add_row(double* __restrict dst, const double* __restrict src, std::size_t n) {
+  for (std::size_t x = 0; x < n; ++x) dst[x] += src[x];
+}
+}  // namespace
+
+Image local_mean_luminance(const Image& xyz, int window) {
   if (xyz.channels < 2) throw std::invalid_argument("local_mean_luminance: image needs the Y channel");
   if (window < 1 || window % 2 == 0)
     throw std::invalid_argument("local_mean_luminance: window must be odd and >= 1, got " + std::to_string(window));
   const int w = xyz.width, h = xyz.height, r = window / 2;
-  // Summed-area table with a zero row and column: S(x, y) = sum of Y over [0, x) x [0, y).
-  std::vector<double> S(std::size_t(w + 1) * (h + 1), 0.0);
-  for (int y = 0; y < h; ++y) {
-    double row = 0.0;
-    for (int x = 0; x < w; ++x) {
-      row += clean_y(xyz.at(x, y, 1));
-      S[std::size_t(y + 1) * (w + 1) + x + 1] = S[std::size_t(y) * (w + 1) + x + 1] + row;
-    }
-  }
-  Image m(w, h, 1);
-  for (int y = 0; y < h; ++y) {
+  const std::size_t stride = std::size_t(w) + 1;
+  // Summed-area table with a zero row and column: S(x, y) = sum of Y over [0, x) x [0, y). Each row's
+  // running sum first (the rows in parallel), then the rows added down the columns in order: every
+  // S(x, y) = S(x, y - 1) + (the row's running sum at x), the additions of a single pass over both.
+  NoFillVector<double> S(stride * (std::size_t(h) + 1));
+  std::fill(S.begin(), S.begin() + std::ptrdiff_t(stride), 0.0);
+  parallel_for(h, [&](long y) {
+    double* row = S.data() + std::size_t(y + 1) * stride;
+    row[0] = 0.0;
+    double sum = 0.0;
+    for (int x = 0; x < w; ++x) row[x + 1] = sum += clean_y(xyz.at(x, int(y), 1));
+  });
+  for (int y = 0; y < h; ++y)
+    add_row(S.data() + std::size_t(y + 1) * stride + 1, S.data() + std::size_t(y) * stride + 1, std::size_t(w));
+  Image m = Image::unfilled(w, h, 1);  // every pixel written below
+  parallel_for(h, [&](long yl) {
+    const int y = int(yl);
     const int y0 = std::max(0, y - r), y1 = std::min(h, y + r + 1);
     for (int x = 0; x < w; ++x) {
       const int x0 = std::max(0, x - r), x1 = std::min(w, x + r + 1);
-      const double sum = S[std::size_t(y1) * (w + 1) + x1] - S[std::size_t(y0) * (w + 1) + x1] -
-                         S[std::size_t(y1) * (w + 1) + x0] + S[std::size_t(y0) * (w + 1) + x0];
+      const double sum = S[std::size_t(y1) * stride + x1] - S[std::size_t(y0) * stride + x1] -
+                         S[std::size_t(y1) * stride + x0] + S[std::size_t(y0) * stride + x0];
       m.at(x, y, 0) = float(std::max(0.0, sum) / (double(x1 - x0) * (y1 - y0)));
     }
-  }
+  });
   return m;
 }
 
@@ -68,15 +82,22 @@ GlintStats glint_stats(const Image& xyz, const GlintOptions& o) {
   for (int i = 0; i <= o.bins; ++i) s.bin_edges.push_back(std::exp2(lo + i * bw));
   s.histogram.assign(o.bins, 0.0);
   const Image m = local_mean_luminance(xyz, o.window);
-  for (int y = 0; y < xyz.height; ++y)
+  // Counts per row (the rows in parallel), added in order: integers, so the same for any thread count.
+  const std::size_t bins = std::size_t(o.bins);
+  std::vector<std::size_t> counts(std::size_t(xyz.height) * bins, 0);
+  parallel_for(xyz.height, [&](long yl) {
+    const int y = int(yl);
+    std::size_t* row = counts.data() + std::size_t(y) * bins;
     for (int x = 0; x < xyz.width; ++x) {
       const double Y = clean_y(xyz.at(x, y, 1)), mean = m.at(x, y, 0);
       if (!(mean > 0.0) || !(Y > o.k * mean)) continue;
-      ++s.glints;
       const double t = (std::log2(Y / mean) - lo) / bw;  // > 0 since Y / mean > k
-      const int b = std::min(o.bins - 1, int(std::min(t, double(o.bins))));
-      s.histogram[b] += 1.0;
+      ++row[std::size_t(std::min(o.bins - 1, int(std::min(t, double(o.bins)))))];
     }
+  });
+  for (std::size_t i = 0; i < counts.size(); ++i) s.glints += counts[i];
+  for (int y = 0; y < xyz.height; ++y)
+    for (std::size_t b = 0; b < bins; ++b) s.histogram[b] += double(counts[std::size_t(y) * bins + b]);
   if (s.glints)
     for (double& v : s.histogram) v /= double(s.glints);
   s.density_per_1000px = s.pixels ? 1000.0 * double(s.glints) / double(s.pixels) : 0.0;
