@@ -54,14 +54,17 @@ std::vector<std::string> FrameMetrics::names() const {
   }
   for (const char* s : {"flicker_ratio", "temporal_error", "temporal_error_mc", "frame_diff_ratio",
                         "flicker_contrast", "flicker_excess", "temporal_lag", "flicker_excess_fixed",
-                        "flicker_valid_px", "flicker_disoccluded_px", "glint_density_test", "glint_density_ref",
-                        "glint_hist_emd_oct"})
+                        "flicker_valid_px", "flicker_disoccluded_px"})
     n.emplace_back(s);
-  for (int b : default_pool_block_sizes()) {
-    n.push_back("pooled_bias_" + std::to_string(b));
-    n.push_back("pooled_rms_" + std::to_string(b));
+  if (options_.glints)
+    for (const char* s : {"glint_density_test", "glint_density_ref", "glint_hist_emd_oct"}) n.emplace_back(s);
+  if (options_.pooled) {
+    for (int b : default_pool_block_sizes()) {
+      n.push_back("pooled_bias_" + std::to_string(b));
+      n.push_back("pooled_rms_" + std::to_string(b));
+    }
+    n.emplace_back("pooled_error");
   }
-  n.emplace_back("pooled_error");
   return n;
 }
 
@@ -117,13 +120,13 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
     v.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
     v.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
   });
-  timed("glints", [&] {
+  if (options_.glints) timed("glints", [&] {
     GlintComparison gc = compare_glints(test_xyz, *ref.xyz);
     v.emplace_back("glint_density_test", defect ? nan : gc.test.density_per_1000px);
     v.emplace_back("glint_density_ref", gc.ref.density_per_1000px);
     v.emplace_back("glint_hist_emd_oct", defect ? nan : gc.emd_octaves);
   });
-  timed("pooled", [&] {
+  if (options_.pooled) timed("pooled", [&] {
     std::vector<PooledErrorScale> pooled = pooled_error(test_xyz, *ref.xyz, 1);
     double pooled8 = nan;
     for (int b : default_pool_block_sizes()) {

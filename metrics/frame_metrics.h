@@ -7,9 +7,11 @@
 //   flicker_ratio, temporal_error, temporal_error_mc, frame_diff_ratio, flicker_contrast,
 //   flicker_excess, temporal_lag, flicker_excess_fixed,
 //   flicker_valid_px, flicker_disoccluded_px     (metrics/flicker.h; from the second frame on)
-//   glint_density_test, glint_density_ref, glint_hist_emd_oct   (metrics/glint_stats.h)
+//   glint_density_test, glint_density_ref, glint_hist_emd_oct   (metrics/glint_stats.h; when
+//                                                  MetricOptions::glints, the group "glints")
 //   pooled_bias_<s>, pooled_rms_<s> for s = 2 ... 64, and pooled_error = pooled_rms_8
-//                                                  (metrics/pooled_error.h, luminance Y)
+//                                                  (metrics/pooled_error.h, luminance Y; when
+//                                                  MetricOptions::pooled, the group "pooled")
 // A frame with NaN, Inf or negative pixels is a defect: every value above is
 // NaN for it (the pixel counts are reported by the runner), so no aggregate
 // can turn it into a clean-looking number.

@@ -1,5 +1,6 @@
 #include "metrics/metric_registry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -31,6 +32,32 @@ void map_mean_max(const Image& m, double* mean, double* max) {
 }
 
 std::vector<std::string> metric_names() { return {"deltaE2000", "deltaEITP", "flip", "psnr", "relative"}; }
+
+std::vector<std::string> metric_group_names() { return {"flicker", "glints", "pooled"}; }
+
+std::vector<std::string> select_metrics(const std::vector<std::string>& list, MetricOptions& options) {
+  const std::vector<std::string> metrics = metric_names(), groups = metric_group_names();
+  auto in = [](const std::vector<std::string>& v, const std::string& x) {
+    return std::find(v.begin(), v.end(), x) != v.end();
+  };
+  std::vector<std::string> per_pixel, named_groups;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string& m = list[i];
+    if (!in(metrics, m) && !in(groups, m)) {
+      std::string msg = "'" + m + "' is neither a metric nor a group of metrics; allowed:";
+      for (std::size_t k = 0; k < metrics.size(); ++k) msg += (k ? ", " : " ") + metrics[k];
+      msg += " (per-pixel metrics) and";
+      for (std::size_t k = 0; k < groups.size(); ++k) msg += (k ? ", " : " ") + groups[k];
+      throw std::invalid_argument(msg + " (groups)");
+    }
+    if (std::find(list.begin(), list.begin() + std::ptrdiff_t(i), m) != list.begin() + std::ptrdiff_t(i))
+      throw std::invalid_argument("'" + m + "' is given twice");
+    (in(metrics, m) ? per_pixel : named_groups).push_back(m);
+  }
+  options.glints = named_groups.empty() || in(named_groups, "glints");
+  options.pooled = named_groups.empty() || in(named_groups, "pooled");
+  return per_pixel;
+}
 
 MetricResult evaluate_metric(const std::string& name, const Image& test_xyz, const Image& ref_xyz,
                              const MetricOptions& opt) {

@@ -20,6 +20,13 @@ namespace glintlab::metrics {
 
 std::vector<std::string> metric_names();  // {"deltaE2000", "deltaEITP", "flip", "psnr", "relative"}
 
+// The groups of frame statistics (FrameMetrics) that a metrics list may name beside the per-pixel
+// metrics: "flicker" (flicker along the motion), "glints" (glint statistics), "pooled" (pooled error).
+// A list that names no group measures every group, as before groups could be named; a list that names
+// any measures flicker (always: the temporal metrics are what runs and `measure` are for) and the
+// groups it names, so `deltaE2000,flicker` measures just those two.
+std::vector<std::string> metric_group_names();  // {"flicker", "glints", "pooled"}
+
 struct MetricOptions {
   double itp_luminance_nits = 100;
   double flip_ppd = kFlipDefaultPpd;  // FLIP v1.6 default: 67.0206 px per degree
@@ -29,7 +36,15 @@ struct MetricOptions {
   // "DISPLAY/VIEW" (e.g. "sRGB/Standard") = display-referred, as that OCIO view shows the images
   // (see metric_xyz in metrics/measurement_space.h).
   std::string display_view;
+  // The statistics groups measured besides flicker (set from the metrics list by select_metrics).
+  bool glints = true;
+  bool pooled = true;
 };
+
+// Splits a metrics list into its per-pixel metrics (in order) and the groups it selects (into
+// `options`). Throws std::invalid_argument naming an entry that is neither a metric nor a group, or is
+// given twice, with every allowed name.
+std::vector<std::string> select_metrics(const std::vector<std::string>& list, MetricOptions& options);
 
 struct MetricResult {
   std::string name;

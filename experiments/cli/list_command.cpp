@@ -30,6 +30,7 @@ void add_list_command(CLI::App& app, int& exit_code) {
           print("glint models", enum_names(core::kGlintModelNames));
           print("debug outputs", core::SandParams::debug_output_names());
           print("metrics", metrics::metric_names());
+          print("metric groups", metrics::metric_group_names());
           print("motion conventions (measure --motion-convention)", enum_names(kMotionConventionNames));
           std::cout << "devices:\n";
           for (const auto& d : core::VkContext::list_devices())

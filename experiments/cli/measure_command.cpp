@@ -53,7 +53,9 @@ void add_measure_command(CLI::App& app, int& exit_code) {
   c->add_option("--motion-convention", o->motion_convention, "pixels, blender, unreal or unity (default: pixels)");
   c->add_option("--depth", o->depth, "SEQ of depth, for disocclusion (default: none)");
   c->add_option("--space", o->space, "OCIO colour space of every input (default: file tag, else scene_linear)");
-  c->add_option("--metrics", o->metrics, "per-pixel metrics, comma-separated (default: deltaE2000,flip)")
+  c->add_option("--metrics", o->metrics, "per-pixel metrics and groups (flicker, glints, pooled), comma-separated; naming "
+                                       "a group measures flicker and the named groups only, else every group "
+                                       "(default: deltaE2000,flip)")
       ->delimiter(',');
   c->add_option("--frames", *frames, "FIRST:LAST frame numbers, inclusive (default: all of the reference's)");
   c->add_option("--fps", o->fps, "frames per second, for time_s (default: 24)");

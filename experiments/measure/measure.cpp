@@ -166,9 +166,20 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
   FrameInput in;
   // The reference on a thread of its own beside the tests and the vectors: whenever the metrics of
   // the frame before leave a core free, two files are decoded at once.
-  std::future<ColourFrame> ref;
+  // It is prepared for the metrics there too, as soon as it is read.
+  struct PreparedReference {
+    ColourFrame frame;  // its image moved to `base`
+    std::shared_ptr<const Image> base;
+    metrics::FrameMetrics::Reference prepared;
+  };
+  std::future<PreparedReference> ref;
   if (p.reference)
-    ref = std::async(std::launch::async, [&] { return read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space); });
+    ref = std::async(std::launch::async, [&] {
+      PreparedReference r{read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space), nullptr, {}};
+      r.base = std::make_shared<const Image>(std::move(r.frame.image));
+      r.prepared = measure.prepare(r.base);
+      return r;
+    });
   for (const auto& t : p.tests) in.tests.push_back(read_colour_frame(t, k, cm, metrics::kXyzD65Space));
   if (p.motion) {
     MotionVectors v =
@@ -181,10 +192,11 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
     if (v.forward) in.forward = std::make_shared<const Image>(std::move(*v.forward));
     in.has_vectors = true;
   }
-  if (ref.valid()) in.reference = ref.get();
-  if (in.reference) {
-    in.base_image = std::make_shared<const Image>(std::move(in.reference->image));
-    in.prepared = measure.prepare(in.base_image);
+  if (ref.valid()) {
+    PreparedReference r = ref.get();
+    in.reference = std::move(r.frame);
+    in.base_image = std::move(r.base);
+    in.prepared = std::move(r.prepared);
   } else {
     if (!in.has_vectors) in.base_image = std::make_shared<const Image>(in.tests[0].image);  // measured too: a copy
     for (const auto& t : in.tests)
@@ -262,17 +274,12 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       p.convention = *c;
     }
     std::vector<std::string> metric_list = o.metrics.empty() ? std::vector<std::string>{"deltaE2000", "flip"} : o.metrics;
-    {
-      const auto allowed = metrics::metric_names();
-      std::set<std::string> seen;
-      for (const auto& m : metric_list) {
-        if (std::find(allowed.begin(), allowed.end(), m) == allowed.end()) {
-          std::string all;
-          for (const auto& a : allowed) all += (all.empty() ? "" : ", ") + a;
-          throw ConfigError("--metrics: '" + m + "' is not a metric (allowed: " + all + ")");
-        }
-        if (!seen.insert(m).second) throw ConfigError("--metrics: '" + m + "' is given twice");
-      }
+    metrics::MetricOptions selected;
+    std::vector<std::string> per_pixel;
+    try {
+      per_pixel = metrics::select_metrics(metric_list, selected);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(std::string("--metrics: ") + e.what());
     }
     if (!o.space.empty()) (void)cm.canonical_name(o.space);
     check_name(o.name, "--name");
@@ -386,7 +393,9 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     spec.height = p.height;
     spec.frames = int(p.numbers.size());
     spec.working_space = metrics::kXyzD65Space;  // inputs are converted from their own spaces once
-    spec.metrics = metric_list;
+    spec.metrics = per_pixel;
+    spec.metric_options.glints = selected.glints;
+    spec.metric_options.pooled = selected.pooled;
     spec.reference.enabled = bool(p.reference);
     spec.reference.grid = 0;
     spec.reference.frames = o.reference;

@@ -36,7 +36,7 @@ struct MeasureOptions {
   std::string motion_convention = "pixels";
   std::string depth;                        // SEQ of depth (one channel: Z, Y, R or the layer's)
   std::string space;                        // OCIO space of every input; "" = file tag, else scene_linear
-  std::vector<std::string> metrics;         // per-pixel metrics; empty = deltaE2000, flip
+  std::vector<std::string> metrics;         // per-pixel metrics and groups (select_metrics); empty = deltaE2000, flip
   int first = INT_MIN, last = INT_MAX;      // --frames FIRST:LAST (frame numbers, inclusive)
   double fps = 24.0;                        // time_s = (frame index) / fps
   std::string name = "measure";             // the summary's "experiment" (what `check` matches)

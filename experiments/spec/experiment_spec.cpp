@@ -187,23 +187,22 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
 }
 
 void ExperimentSpec::read_common(JsonReader& r, ExperimentSpec& s) {
-  auto allowed_metrics = metrics::metric_names();
   if (r.has("metrics")) {
     const auto& m = r.raw("metrics");
     if (!m.is_array()) r.fail("metrics", "expected an array of metric names");
+    std::vector<std::string> list;
     for (const auto& e : m) {
-      if (!e.is_string() || std::find(allowed_metrics.begin(), allowed_metrics.end(), e.get<std::string>()) ==
-                                allowed_metrics.end()) {
-        std::string list;
-        for (const auto& a : allowed_metrics) list += (list.empty() ? "" : ", ") + a;
-        r.fail("metrics", "unknown metric " + e.dump() + "; allowed: " + list);
-      }
-      s.metrics.push_back(e.get<std::string>());
+      if (!e.is_string()) r.fail("metrics", "expected an array of metric names, got " + e.dump());
+      list.push_back(e.get<std::string>());
+    }
+    try {
+      s.metrics = metrics::select_metrics(list, s.metric_options);
+    } catch (const std::invalid_argument& e) {
+      r.fail("metrics", e.what());
     }
   } else {
-    s.metrics = allowed_metrics;
+    s.metrics = metrics::metric_names();
   }
-
   if (auto mo = r.optional_child("metric_options")) {
     s.metric_options.display_view = mo->get_string("view", "");
     if (!s.metric_options.display_view.empty()) {

@@ -16,7 +16,8 @@
 //                          "disocclusion_tolerance": 0.05},       // taa only; defaults = Falcor
 //                  "debug": "final" | <debug output>, "material": {<overrides>}} ],
 //   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
-//   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],
+//   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],  // and the groups "flicker",
+//              "glints", "pooled": none named = every group, else flicker and the named ones
 //   "metric_options": {"view": "" | "sRGB/Standard",  // "" = scene-referred per-pixel metrics
 //                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67.0206},
 //   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "ACES 1.0 SDR-video",

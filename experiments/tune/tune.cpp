@@ -147,6 +147,16 @@ json tune_definition(const TuneOptions& o, const json& experiment, const std::st
       fail("--objectives: unknown objective \"" + m + "\"; allowed: " + join(kObjectives));
     if (std::find(seen.begin(), seen.end(), m) != seen.end()) fail("--objectives: \"" + m + "\" twice");
     seen.push_back(m);
+    // An objective the experiment does not measure (its "metrics" list leaves it out) would be missing
+    // from every trial.
+    const auto per_pixel = metrics::metric_names();
+    const bool measured =
+        std::find(per_pixel.begin(), per_pixel.end(), m) != per_pixel.end()
+            ? std::find(spec.metrics.begin(), spec.metrics.end(), m) != spec.metrics.end()
+            : m.rfind("glint_", 0) == 0 ? spec.metric_options.glints
+                                        : m != "pooled_error" || spec.metric_options.pooled;
+    if (!measured)
+      fail("--objectives: \"" + m + "\" is not measured by " + file + " (its \"metrics\" list leaves it out)");
   }
   const json base = variants[size_t(base_index)];
   json space = json::array();

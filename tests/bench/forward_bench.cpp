@@ -22,9 +22,10 @@
 //      render of the same frame (its reference): ms per metric.
 //   5. `glintlab measure` end to end on files: a 1920x1080 test sequence against
 //      its reference (float EXR, ZIP, with a motion sequence in the `pixels`
-//      convention), flicker + ΔE00, EXR decoding included (the next frame is
-//      decoded while one is measured): frames/s of the whole, and ms and frames/s
-//      per metric group and for reading a frame.
+//      convention), flicker + ΔE00 (`--metrics deltaE2000,flicker`), EXR decoding
+//      included (the next frame is decoded while one is measured): frames/s of the
+//      whole, and ms and frames/s per metric group and for reading a frame; then
+//      the same with every group of statistics, as `run` measures.
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
 // Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H]
@@ -181,15 +182,15 @@ void write_measure_sequence(const fs::path& dir, int w, int h, int frames, bool 
   }
 }
 
-// `glintlab measure` of the sequence in dir (its first `frames` frames; the outputs in dir/out),
-// as the command runs it (its allocator settings included). The wall time, start-up included.
-double run_measure(const fs::path& dir, int frames) {
+// `glintlab measure --metrics LIST` of the sequence in dir (its first `frames` frames; the outputs in
+// dir/out), as the command runs it (its allocator settings included). The wall time, start-up included.
+double run_measure(const fs::path& dir, int frames, const std::vector<std::string>& metrics_list) {
   tune_allocator_for_rendering();  // as main() of the glintlab CLI
   MeasureOptions o;
   o.reference = (dir / "ref").string();
   o.tests = {{"test", (dir / "test").string(), ""}};
   o.motion = (dir / "motion").string();
-  o.metrics = {"deltaE2000"};
+  o.metrics = metrics_list;
   o.first = 0;
   o.last = frames - 1;
   o.out_dir = (dir / "out").string();
@@ -204,40 +205,56 @@ double run_measure(const fs::path& dir, int frames) {
   return wall_s;
 }
 
-// One format: the sequence written, then measured twice, 2 frames and all of them, each in a fresh
-// process: the difference is the time a frame takes once the command has started.
+// The per-frame times of a run on their threads, from its summary.json.
+void print_measure_stages(const fs::path& summary_path, int frames) {
+  std::ifstream in(summary_path);
+  const nlohmann::json s = nlohmann::json::parse(in);
+  const auto mean = [](const nlohmann::json& st) { return st.value("mean", 0.0); };
+  std::printf("  per frame, on their threads (the %d-frame run's means):\n", frames);
+  std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a test frame", mean(s["variants"][0]["wall_ms"]),
+              1000.0 / mean(s["variants"][0]["wall_ms"]));
+  std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a reference frame", mean(s["references"][0]["wall_ms"]),
+              1000.0 / mean(s["references"][0]["wall_ms"]));
+  for (auto it = s["metric_ms_per_metric"].begin(); it != s["metric_ms_per_metric"].end(); ++it)
+    if (it.key() != "convert")
+      std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", it.key().c_str(), mean(it.value()), 1000.0 / mean(it.value()));
+  std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "all metrics of a frame", mean(s["metric_ms_per_frame"]),
+              1000.0 / mean(s["metric_ms_per_frame"]));
+}
+
+// One format: the sequence written, then measured with ΔE00 and flicker (the `measure` goal's pair:
+// `--metrics deltaE2000,flicker`), 2 frames and all of them, each in a fresh process (the difference is
+// the time a frame takes once the command has started), then all of them again with every group of
+// statistics (`--metrics deltaE2000`: glint statistics and pooled error too, as `run` measures).
 bool measure_section(const fs::path& dir, int w, int h, int frames, bool half) {
   if (!in_child([&] { return write_measure_sequence(dir, w, h, frames, half), true; })) return false;
   ::sync();  // the files on disk before the runs, so that their writing-back does not share the cores
+  const std::vector<std::string> goal = {"deltaE2000", "flicker"}, every = {"deltaE2000"};
   const fs::path two = dir / "two_frames_s";
-  if (!in_child([&] { return bool(std::ofstream(two) << run_measure(dir, 2)); })) return false;
-  return in_child([&] {
-    const double wall_s = run_measure(dir, frames);
+  if (!in_child([&] { return bool(std::ofstream(two) << run_measure(dir, 2, goal)); })) return false;
+  const bool ok = in_child([&] {
+    const double wall_s = run_measure(dir, frames, goal);
     double wall2_s = 0;
     std::ifstream(two) >> wall2_s;
-    std::ifstream in(dir / "out" / "summary.json");
-    const nlohmann::json s = nlohmann::json::parse(in);
-    const auto mean = [](const nlohmann::json& st) { return st.value("mean", 0.0); };
     const double per_frame_s = (wall_s - wall2_s) / (frames - 2);
     std::printf("\nmeasure: one %dx%d test sequence against its reference (%s RGBA EXR, ZIP; motion float RGBA in "
-                "the pixels convention), deltaE2000 + flicker + the run's other per-frame metrics, %ld metric "
-                "threads, vector math %s; each run a fresh process, start-up, headers and hashing included:\n"
+                "the pixels convention), --metrics deltaE2000,flicker, %ld metric threads, vector math %s; each "
+                "run a fresh process, start-up, headers and hashing included:\n"
                 "  %d frames  %6.2f s wall  %5.2f frames/s\n  2 frames   %6.2f s wall\n",
                 w, h, half ? "half" : "float", metrics::metric_threads(), metrics::vector_math_isa(), frames, wall_s,
                 frames / wall_s, wall2_s);
     if (per_frame_s > 0)
       std::printf("  a frame once started (the difference): %.1f ms, %.2f frames/s\n", 1000.0 * per_frame_s,
                   1.0 / per_frame_s);
-    std::printf("  per frame, on their threads (the %d-frame run's means):\n", frames);
-    std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a test frame", mean(s["variants"][0]["wall_ms"]),
-                1000.0 / mean(s["variants"][0]["wall_ms"]));
-    std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "read a reference frame", mean(s["references"][0]["wall_ms"]),
-                1000.0 / mean(s["references"][0]["wall_ms"]));
-    for (auto it = s["metric_ms_per_metric"].begin(); it != s["metric_ms_per_metric"].end(); ++it)
-      if (it.key() != "convert")
-        std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", it.key().c_str(), mean(it.value()), 1000.0 / mean(it.value()));
-    std::printf("  %-24s %8.2f ms  %7.2f frames/s\n", "all metrics of a frame", mean(s["metric_ms_per_frame"]),
-                1000.0 / mean(s["metric_ms_per_frame"]));
+    print_measure_stages(dir / "out" / "summary.json", frames);
+    return true;
+  });
+  return ok && in_child([&] {
+    const double wall_s = run_measure(dir, frames, every);
+    std::printf("  the same with every group of statistics (--metrics deltaE2000: glint statistics and pooled "
+                "error too):\n  %d frames  %6.2f s wall  %5.2f frames/s\n",
+                frames, wall_s, frames / wall_s);
+    print_measure_stages(dir / "out" / "summary.json", frames);
     return true;
   });
 }

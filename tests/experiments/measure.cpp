@@ -221,6 +221,47 @@ TEST_F(Measure, OwnSequenceReproducesTheRunExactly) {
     EXPECT_LT(me["mean"].get<double>(), 0.98 * me[mirror].get<double>()) << mirror << ": " << me;
 }
 
+// --metrics names groups too: deltaE2000,flicker measures those two alone (no glint or pooled columns,
+// no time spent on them), deltaE2000,glints adds the glint statistics; the values measured are those of
+// the run that measures every group.
+TEST_F(Measure, MetricGroupsMeasureJustWhatIsNamed) {
+  auto run_with = [&](const std::string& out, std::vector<std::string> metrics_list) {
+    MeasureOptions o = own_options(out);
+    o.motion = (run_dir() / "motion").string();
+    o.metrics = std::move(metrics_list);
+    std::string log;
+    EXPECT_EQ(measure(o, &log), 0) << log;
+    return read_csv(scratch(out) / "frames.csv");
+  };
+  const Rows every = run_with("groups-every", {"deltaE2000"});
+  const Rows pair = run_with("groups-pair", {"deltaE2000", "flicker"});
+  const Rows glints = run_with("groups-glints", {"glints", "deltaE2000"});
+  const auto& every_row = every.at({"taa", 3});
+  const auto& pair_row = pair.at({"taa", 3});
+  const auto& glint_row = glints.at({"taa", 3});
+  for (const char* c : {"glint_density_test", "glint_hist_emd_oct", "pooled_error", "pooled_rms_8"}) {
+    EXPECT_TRUE(every_row.count(c)) << c;
+    EXPECT_FALSE(pair_row.count(c)) << c;
+  }
+  EXPECT_TRUE(glint_row.count("glint_density_test"));
+  EXPECT_FALSE(glint_row.count("pooled_error"));
+  int compared = 0;
+  for (const char* v : kVariants)
+    for (int k = 0; k < 8; ++k) {
+      for (const char* m : {"deltaE2000", "flicker_ratio", "temporal_error_mc", "flicker_contrast", "motion_explained"}) {
+        const double a = cell(every, v, k, m);
+        if (std::isnan(a)) continue;
+        EXPECT_EQ(cell(pair, v, k, m), a) << v << " frame " << k << " " << m;
+        ++compared;
+      }
+      EXPECT_EQ(cell(glints, v, k, "glint_density_test"), cell(every, v, k, "glint_density_test")) << v << " " << k;
+    }
+  EXPECT_GT(compared, 3 * 7 * 4);
+  const nlohmann::json s = read_json(scratch("groups-pair") / "summary.json");
+  EXPECT_FALSE(s["variants"][0]["metrics"].contains("pooled_error")) << s["variants"][0]["metrics"];
+  EXPECT_TRUE(s["variants"][0]["metrics"].contains("flicker_ratio"));
+}
+
 // Every convention round-trips: vectors converted into it and read back give the metrics of
 // glintlab's own vectors without distances (same disocclusion rule), to float precision.
 TEST_F(Measure, EveryConventionRoundTrips) {
@@ -517,7 +558,7 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
       {"a reserved name", [&](MeasureOptions& o) { o.tests[0].name = "reference"; }, "the run folder's own names"},
       {"a name with a path in it", [&](MeasureOptions& o) { o.tests[0].name = ".."; }, "not allowed"},
       {"two tests of one name", [&](MeasureOptions& o) { o.tests[1].name = "no-aa"; }, "two tests are named"},
-      {"an unknown metric", [&](MeasureOptions& o) { o.metrics = {"mse"}; }, "not a metric"},
+      {"an unknown metric", [&](MeasureOptions& o) { o.metrics = {"mse"}; }, "neither a metric nor a group"},
       {"frames too small for optical flow",
        [&](MeasureOptions& o) { o.reference = tiny.string(), o.tests = {{"t", tiny.string(), ""}}; },
        "needs frames of at least 16 pixels on the short side"},

@@ -58,6 +58,29 @@ struct TempFile {
 
 }  // namespace
 
+// "metrics" may name the groups flicker, glints and pooled: naming any measures flicker and those.
+TEST(ExperimentSpec, MetricsListSelectsGroups) {
+  json j = minimal();
+  ExperimentSpec every = ExperimentSpec::from_json(j, kFile);
+  EXPECT_TRUE(every.metric_options.glints && every.metric_options.pooled);
+  j["metrics"] = {"deltaE2000", "flicker"};
+  ExperimentSpec pair = ExperimentSpec::from_json(j, kFile);
+  EXPECT_EQ(pair.metrics, std::vector<std::string>{"deltaE2000"});
+  EXPECT_FALSE(pair.metric_options.glints);
+  EXPECT_FALSE(pair.metric_options.pooled);
+  j["metrics"] = {"pooled", "flip"};
+  j["metric_options"] = {{"flip", "ldr"}};  // the options do not undo the selection
+  ExperimentSpec pooled = ExperimentSpec::from_json(j, kFile);
+  EXPECT_EQ(pooled.metrics, std::vector<std::string>{"flip"});
+  EXPECT_FALSE(pooled.metric_options.glints);
+  EXPECT_TRUE(pooled.metric_options.pooled);
+  j.erase("metric_options");
+  j["metrics"] = {"deltaE2000", "glint"};
+  expect_rejected(j, {"metrics", "'glint'", "glints", "pooled", "deltaEITP"});
+  j["metrics"] = {"flip", "flip"};
+  expect_rejected(j, {"metrics", "'flip' is given twice"});
+}
+
 TEST(ExperimentSpec, MinimalSpecGetsDocumentedDefaults) {
   ExperimentSpec s = ExperimentSpec::from_json(minimal(), kFile);
   EXPECT_EQ(s.name, "under-test");  // file stem

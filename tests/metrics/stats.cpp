@@ -343,6 +343,37 @@ TEST(MetricRegistry, NamesAndErrors) {
   }
 }
 
+// A metrics list names per-pixel metrics and groups: no group = every group; any group = flicker and
+// the named ones. Unknown and repeated names are errors that list what is allowed.
+TEST(MetricRegistry, ListsSelectGroups) {
+  EXPECT_EQ(metric_group_names(), (std::vector<std::string>{"flicker", "glints", "pooled"}));
+  auto select = [](std::vector<std::string> list, bool glints, bool pooled, std::vector<std::string> per_pixel) {
+    MetricOptions o;
+    o.glints = !glints, o.pooled = !pooled;  // set either way by select_metrics
+    EXPECT_EQ(select_metrics(list, o), per_pixel);
+    EXPECT_EQ(o.glints, glints);
+    EXPECT_EQ(o.pooled, pooled);
+  };
+  select({"flip", "deltaE2000"}, true, true, {"flip", "deltaE2000"});
+  select({"deltaE2000", "flicker"}, false, false, {"deltaE2000"});
+  select({"pooled", "psnr"}, false, true, {"psnr"});
+  select({"glints", "pooled", "flicker"}, true, true, {});
+  select({}, true, true, {});
+  MetricOptions o;
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"ssim"}, {"glint"}}) {
+    try {
+      (void)select_metrics(bad, o);
+      FAIL() << "no throw";
+    } catch (const std::invalid_argument& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("'" + bad[0] + "'"), std::string::npos) << m;
+      for (const std::string& n : metric_names()) EXPECT_NE(m.find(n), std::string::npos) << m;
+      for (const std::string& n : metric_group_names()) EXPECT_NE(m.find(n), std::string::npos) << m;
+    }
+  }
+  EXPECT_THROW((void)select_metrics({"flip", "glints", "flip"}, o), std::invalid_argument);
+}
+
 TEST(MetricRegistry, EveryMetricGivesAOneChannelMapAndZeroOnIdentity) {
   const Image a = grey(24, 16, 0.5f, 4);
   for (const std::string& n : metric_names()) {
