@@ -112,6 +112,12 @@ TEST_F(Tune, BadSpaceIsAnErrorNamingTheKeyBeforeAnyTrial) {
                         " --base taa --space taa.alpha=0.1:0.2 --objectives ssim --trials 2 --study " + q(study));
   EXPECT_EQ(obj.code, 2);
   EXPECT_NE(obj.output.find("temporal_error_mc"), std::string::npos) << obj.output;
+  // An objective the experiment's "metrics" list leaves out (tiny.json measures only deltaE2000).
+  const Result unmeasured = sh(std::string(GLINTLAB_CLI) + " tune " + q(root() / "tiny.json") +
+                               " --base taa --space taa.alpha=0.1:0.2 --objectives flip --trials 2 --study " + q(study));
+  EXPECT_EQ(unmeasured.code, 2);
+  EXPECT_NE(unmeasured.output.find("\"flip\" is not measured"), std::string::npos) << unmeasured.output;
+  EXPECT_FALSE(fs::exists(study / "trials"));
 }
 
 TEST_F(Tune, TwoTrialsAreDeterministicWithAFixedSeedAndAnotherStudyIsRefused) {
