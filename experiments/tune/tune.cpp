@@ -150,11 +150,13 @@ json tune_definition(const TuneOptions& o, const json& experiment, const std::st
     // An objective the experiment does not measure (its "metrics" list leaves it out) would be missing
     // from every trial.
     const auto per_pixel = metrics::metric_names();
-    const bool measured =
-        std::find(per_pixel.begin(), per_pixel.end(), m) != per_pixel.end()
-            ? std::find(spec.metrics.begin(), spec.metrics.end(), m) != spec.metrics.end()
-            : m.rfind("glint_", 0) == 0 ? spec.metric_options.glints
-                                        : m != "pooled_error" || spec.metric_options.pooled;
+    bool measured = true;
+    if (std::find(per_pixel.begin(), per_pixel.end(), m) != per_pixel.end())
+      measured = std::find(spec.metrics.begin(), spec.metrics.end(), m) != spec.metrics.end();
+    else if (m.rfind("glint_", 0) == 0)
+      measured = spec.metric_options.glints;
+    else if (m == "pooled_error")
+      measured = spec.metric_options.pooled;
     if (!measured)
       fail("--objectives: \"" + m + "\" is not measured by " + file + " (its \"metrics\" list leaves it out)");
   }
