@@ -85,44 +85,131 @@ NoFillVector<float> adaptation_luminance(const Image& xyz, double sigma_px) {
 }
 
 namespace {
-// reproject's work for row y, into out[0 .. width).
-GLINTLAB_AVX2_CLONES void reproject_row(const Image& motion, const float* prev_distance,
-                                        double tolerance, int y, Reprojected* out) {
-  const int w = motion.width, h = motion.height;
+// One row of the reprojection as structure of arrays, so that the loops over it run on the vector
+// units: each pixel's state and its four bilinear taps into frame t-1 (indices and weights).
+struct RowWarp {
+  NoFillVector<int> state;
+  NoFillVector<int> idx[4];
+  NoFillVector<float> weight[4];
+  void resize(std::size_t w) {
+    state.resize(w);
+    for (int k = 0; k < 4; ++k) idx[k].resize(w), weight[k].resize(w);
+  }
+};
+
+// The reprojection of row y into `out` (every entry written). Branch-free, so that it vectorises:
+// every pixel computes its taps, a masked one at a clamped in-range position (no conversion of an
+// out-of-range value to int), and the tests are combined into its state.
+// (The loop over plain restricted pointers: GCC 12 vectorises it so, not through the Image and RowWarp.)
+GLINTLAB_AVX2_CLONES void reproject_pixels(const float* __restrict m, int w, int h, int y,
+                                           const float* __restrict prev_distance, double tolerance,
+                                           int* __restrict state, int* __restrict i0, int* __restrict i1,
+                                           int* __restrict i2, int* __restrict i3, float* __restrict w0,
+                                           float* __restrict w1, float* __restrict w2, float* __restrict w3) {
+  // (Conditions as 0/1 ints and the state as arithmetic on them: GCC 12 vectorises that, not bools.)
+  static_assert(Reprojected::kValid == 0 && Reprojected::kBackground == 1 && Reprojected::kDisoccluded == 2, "");
   for (int x = 0; x < w; ++x) {
-    Reprojected& r = out[x];
-    r = Reprojected{};
-    const float* m = motion.px(x, y);
-    if (!(m[2] > 0.0f)) {
-      r.state = Reprojected::kBackground;
-      continue;
-    }
+    const float* px = m + 4 * x;
     // The centre of pixel p sat at (x + 0.5, y + 0.5) - v in frame t-1; in texel-index
-    // coordinates (texel centres at integers) that is (x, y) - v.
-    const double qx = x - double(m[0]), qy = y - double(m[1]);
-    const double d_prev = m[3];
-    bool ok = d_prev > 0.0 && std::isfinite(qx) && std::isfinite(qy) && qx >= 0.0 && qy >= 0.0 &&
-              qx <= double(w - 1) && qy <= double(h - 1);
-    if (ok) {
-      const int x0 = std::min(int(qx), w - 1), y0 = std::min(int(qy), h - 1);
-      const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
-      const double fx = qx - x0, fy = qy - y0;
-      const int tx[4] = {x0, x1, x0, x1}, ty[4] = {y0, y0, y1, y1};
-      const double tw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-      double d_interp = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        r.idx[k] = unsigned(ty[k]) * unsigned(w) + unsigned(tx[k]);
-        r.weight[k] = float(tw[k]);
-        // A tap that saw no surface, or a surface far off the point's distance
-        // (another object across a silhouette), contaminates the sample.
-        if (tw[k] > 0.0 && !(std::abs(prev_distance[r.idx[k]] - d_prev) <= kSilhouetteTolerance * d_prev)) ok = false;
-        d_interp += tw[k] * prev_distance[r.idx[k]];
-      }
-      // On a smooth surface the interpolated distance is the point's; across a
-      // silhouette it mixes the two surfaces and misses it.
-      ok = ok && std::abs(d_interp - d_prev) <= tolerance * d_prev;
+    // coordinates (texel centres at integers) that is (x, y) - v. (NaN fails every comparison.)
+    const double qx = x - double(px[0]), qy = y - double(px[1]);
+    const double d_prev = px[3];
+    const int inside = (d_prev > 0.0) & (qx >= 0.0) & (qy >= 0.0) & (qx <= double(w - 1)) & (qy <= double(h - 1));
+    const double cx = inside ? qx : 0.0, cy = inside ? qy : 0.0;
+    const int x0 = std::min(int(cx), w - 1), y0 = std::min(int(cy), h - 1);
+    const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+    const double fx = cx - x0, fy = cy - y0;
+    const double t0 = (1 - fx) * (1 - fy), t1 = fx * (1 - fy), t2 = (1 - fx) * fy, t3 = fx * fy;
+    const int j0 = y0 * w + x0, j1 = y0 * w + x1, j2 = y1 * w + x0, j3 = y1 * w + x1;
+    const double p0 = prev_distance[j0], p1 = prev_distance[j1], p2 = prev_distance[j2], p3 = prev_distance[j3];
+    // A tap that saw no surface, or a surface far off the point's distance (another object across a
+    // silhouette), contaminates the sample.
+    const double far = kSilhouetteTolerance * d_prev;
+    const int taps = !((t0 > 0.0) & !(std::abs(p0 - d_prev) <= far)) & !((t1 > 0.0) & !(std::abs(p1 - d_prev) <= far)) &
+                     !((t2 > 0.0) & !(std::abs(p2 - d_prev) <= far)) & !((t3 > 0.0) & !(std::abs(p3 - d_prev) <= far));
+    // On a smooth surface the interpolated distance is the point's; across a silhouette it mixes the
+    // two surfaces and misses it.
+    double d_interp = 0.0;
+    d_interp += t0 * p0;
+    d_interp += t1 * p1;
+    d_interp += t2 * p2;
+    d_interp += t3 * p3;
+    const int ok = inside & taps & (std::abs(d_interp - d_prev) <= tolerance * d_prev);
+    const int background = !(px[2] > 0.0f);
+    state[x] = background + (1 - background) * (2 - 2 * ok);  // kBackground, else kValid or kDisoccluded
+    i0[x] = j0, i1[x] = j1, i2[x] = j2, i3[x] = j3;
+    w0[x] = float(t0), w1[x] = float(t1), w2[x] = float(t2), w3[x] = float(t3);
+  }
+}
+// Row y of a 4-channel motion image (callers check the channels).
+void reproject_row(const Image& motion, const float* prev_distance, double tolerance, int y, RowWarp& out) {
+  reproject_pixels(motion.px(0, y), motion.width, motion.height, y, prev_distance, tolerance, out.state.data(),
+                   out.idx[0].data(), out.idx[1].data(), out.idx[2].data(), out.idx[3].data(), out.weight[0].data(),
+                   out.weight[1].data(), out.weight[2].data(), out.weight[3].data());
+}
+
+// out[x] = the bilinear value of `plane` (a quantity of frame t-1) at row pixel x's taps, x < w.
+GLINTLAB_AVX2_CLONES void sample_row(const RowWarp& warp, const float* __restrict plane, int w, double* __restrict out) {
+  const int *__restrict i0 = warp.idx[0].data(), *__restrict i1 = warp.idx[1].data();
+  const int *__restrict i2 = warp.idx[2].data(), *__restrict i3 = warp.idx[3].data();
+  const float *__restrict w0 = warp.weight[0].data(), *__restrict w1 = warp.weight[1].data();
+  const float *__restrict w2 = warp.weight[2].data(), *__restrict w3 = warp.weight[3].data();
+  for (int x = 0; x < w; ++x) {
+    double v = 0.0;
+    v += double(w0[x]) * plane[i0[x]];
+    v += double(w1[x]) * plane[i1[x]];
+    v += double(w2[x]) * plane[i2[x]];
+    v += double(w3[x]) * plane[i3[x]];
+    out[x] = v;
+  }
+}
+
+// The per-pixel terms of FlickerTracker::push for one row of w pixels, kRowTerms a pixel into `terms`
+// (pixel x's at terms[kRowTerms x ..]): |ΔT − ΔR|, |ΔT|, |ΔR| (PQ, fixed pixel), the fixed-gaze excess,
+// then along the motion c(T), c(R), T's own contrast, the excess, the lag and |e_t − e_{t−1}| (0 where
+// the pixel is masked). The planes are the row's (frame t and frame t−1 at the same pixels); `prev`
+// holds frame t−1 resampled along the motion: T, R, T's and R's Y_a, PQ of T and of R, w each.
+constexpr std::size_t kRowTerms = 10;
+GLINTLAB_AVX2_CLONES void flicker_terms(int w, const int* __restrict state, const float* __restrict yt,
+                                        const double* __restrict pqt, const double* __restrict prev_pqt,
+                                        const float* __restrict own_a, const float* __restrict prev_own_a,
+                                        const float* __restrict ref_y, const double* __restrict ref_pq,
+                                        const double* __restrict prev_ref_pq, const float* __restrict ref_a,
+                                        const float* __restrict prev_ref_a, const double* __restrict prev,
+                                        double* __restrict terms) {
+  const double *t_prev = prev, *r_prev = prev + w, *ta_prev = prev + 2 * w, *ra_prev = prev + 3 * w;
+  const double *pq_t_prev = prev + 4 * w, *pq_r_prev = prev + 5 * w;
+  for (int x = 0; x < w; ++x) {
+    double* tm = terms + kRowTerms * std::size_t(x);
+    // Fixed-pixel terms over every pixel.
+    const double dT = pqt[x] - prev_pqt[x], dR = ref_pq[x] - prev_ref_pq[x];
+    tm[0] = std::abs(dT - dR);
+    tm[1] = std::abs(dT);
+    tm[2] = std::abs(dR);
+    // The five terms over the reference's adaptation luminance share one reciprocal.
+    const double inv_denom = 1.0 / (double(ref_a[x]) + kContrastEpsilon);
+    {  // fixed gaze, at the eye's resolution
+      const double fT = std::abs(double(own_a[x]) - prev_own_a[x]);
+      const double fR = std::abs(double(ref_a[x]) - prev_ref_a[x]);
+      tm[3] = std::max(0.0, fT - fR) * inv_denom;
     }
-    r.state = ok ? Reprojected::kValid : Reprojected::kDisoccluded;
+    // Along the motion.
+    const double ct = std::abs(double(yt[x]) - t_prev[x]) * inv_denom;
+    const double cr = std::abs(double(ref_y[x]) - r_prev[x]) * inv_denom;
+    const double cs = std::abs(double(yt[x]) - t_prev[x]) / (double(own_a[x]) + kContrastEpsilon);
+    // One-sided, both frames low-passed at the eye's resolution before the difference.
+    const double lT = std::abs(double(own_a[x]) - ta_prev[x]);
+    const double lR = std::abs(double(ref_a[x]) - ra_prev[x]);
+    const double excess = std::max(0.0, lT - lR) * inv_denom;
+    const double lag = std::max(0.0, lR - lT) * inv_denom;
+    const double emc = std::abs((pqt[x] - ref_pq[x]) - (pq_t_prev[x] - pq_r_prev[x]));
+    const bool valid = state[x] == Reprojected::kValid;
+    tm[4] = valid ? ct : 0.0;
+    tm[5] = valid ? cr : 0.0;
+    tm[6] = valid ? cs : 0.0;
+    tm[7] = valid ? excess : 0.0;
+    tm[8] = valid ? lag : 0.0;
+    tm[9] = valid ? emc : 0.0;
   }
 }
 }  // namespace
@@ -130,9 +217,19 @@ GLINTLAB_AVX2_CLONES void reproject_row(const Image& motion, const float* prev_d
 std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>& prev_distance, double tolerance) {
   if (prev_distance.size() != motion.pixel_count())
     throw std::invalid_argument("reproject: the previous distances and the motion image differ in size");
+  if (motion.channels != 4)
+    throw std::invalid_argument("reproject: the motion image needs 4 channels, got " + std::to_string(motion.channels));
   std::vector<Reprojected> out(motion.pixel_count());
   parallel_for(motion.height, [&](long y) {
-    reproject_row(motion, prev_distance.data(), tolerance, int(y), out.data() + std::size_t(y) * motion.width);
+    RowWarp warp;
+    warp.resize(std::size_t(motion.width));
+    reproject_row(motion, prev_distance.data(), tolerance, int(y), warp);
+    for (int x = 0; x < motion.width; ++x) {
+      Reprojected& r = out[std::size_t(y) * std::size_t(motion.width) + std::size_t(x)];
+      r.state = Reprojected::State(warp.state[std::size_t(x)]);
+      if (r.state != Reprojected::kValid) continue;  // a masked pixel has no taps
+      for (int k = 0; k < 4; ++k) r.idx[k] = unsigned(warp.idx[k][std::size_t(x)]), r.weight[k] = warp.weight[k][std::size_t(x)];
+    }
   });
   return out;
 }
@@ -155,7 +252,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
                                 std::to_string(test_xyz.height) + " but the reference " + std::to_string(ref.width) +
                                 "x" + std::to_string(ref.height));
   require_same_size(test_xyz, motion, "FlickerTracker::push (motion)");
-  if (motion.channels < 4)
+  if (motion.channels != 4)
     throw std::invalid_argument("FlickerTracker::push: the motion image needs 4 channels (v.xy, distance now, "
                                 "distance in the previous frame), got " + std::to_string(motion.channels));
   if (pushed_ > 0 && (test_xyz.width != width_ || test_xyz.height != height_))
@@ -180,63 +277,43 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
     std::vector<Row> rows(static_cast<size_t>(h));
     parallel_for(h, [&](long y) {
       Row& row = rows[size_t(y)];
-      // Where the row's pixels were in frame t-1 (reproject's, a row at a time, into the thread's own
-      // row buffer: reproject_row writes every entry).
-      static thread_local std::vector<Reprojected> warp;
-      warp.resize(static_cast<std::size_t>(w));
-      reproject_row(motion, prev_dist_.data(), kDisocclusionTolerance, int(y), warp.data());
-      // The previous frames resampled along the motion at the row's valid pixels, and their PQ in one call.
-      NoFillVector<double> prev(2 * std::size_t(w)), prev_pq(2 * std::size_t(w));  // the first 2 valid written
-      std::size_t valid = 0;
-      for (int x = 0; x < w; ++x) {
-        const Reprojected& rp = warp[std::size_t(x)];
-        if (rp.state != Reprojected::kValid) continue;
-        prev[2 * valid] = rp.sample(prev_yt_);
-        prev[2 * valid + 1] = rp.sample(prev_ref.y);
-        ++valid;
-      }
-      perceptual_luminance_n(prev.data(), prev_pq.data(), 2 * valid);
-      // The row's sums in locals (kept in registers: a Row in memory may alias the planes), each in
-      // x order; the five terms over the reference's adaptation luminance share one reciprocal.
+      // Where the row's pixels were in frame t-1, and the four quantities of frame t-1 the terms
+      // need resampled there (for every pixel: a masked one's values are not used), into the thread's
+      // own row buffers (every entry written); then the PQ of the two luminances.
+      static thread_local RowWarp warp;
+      static thread_local NoFillVector<double> prev;  // 6 planes of w: T, R, T's and R's Y_a, PQ of T and R
+      warp.resize(std::size_t(w));
+      prev.resize(6 * std::size_t(w));
+      double* const t_prev = prev.data();
+      double* const r_prev = t_prev + w;
+      double* const ta_prev = r_prev + w;
+      double* const ra_prev = ta_prev + w;
+      double* const pq_t_prev = ra_prev + w;
+      double* const pq_r_prev = pq_t_prev + w;
+      reproject_row(motion, prev_dist_.data(), kDisocclusionTolerance, int(y), warp);
+      sample_row(warp, prev_yt_.data(), w, t_prev);
+      sample_row(warp, prev_ref.y.data(), w, r_prev);
+      sample_row(warp, prev_ya_test_.data(), w, ta_prev);
+      sample_row(warp, prev_ref.adaptation.data(), w, ra_prev);
+      perceptual_luminance_n(t_prev, pq_t_prev, std::size_t(w));
+      perceptual_luminance_n(r_prev, pq_r_prev, std::size_t(w));
+      // The row's terms (vectorised), then their sums in x order (as one loop over the pixels would add them).
+      static thread_local NoFillVector<double> terms;
+      terms.resize(kRowTerms * std::size_t(w));
+      const std::size_t o = std::size_t(y) * std::size_t(w);
+      flicker_terms(w, warp.state.data(), yt.data() + o, pqt.data() + o, prev_pqt_.data() + o, own_adaptation.data() + o,
+                    prev_ya_test_.data() + o, ref.y.data() + o, ref.pq.data() + o, prev_ref.pq.data() + o,
+                    ref.adaptation.data() + o, prev_ref.adaptation.data() + o, prev.data(), terms.data());
       double e = 0, dt = 0, dr = 0, excess_fixed = 0, ct = 0, cr = 0, cs = 0, excess = 0, lag = 0, emc = 0;
       std::size_t n_valid = 0, n_disoccluded = 0, n_background = 0;
-      std::size_t k = 0;  // the next valid pixel's entry
-      for (int x = 0; x < w; ++x) {
-        const std::size_t i = std::size_t(y) * w + x;
-        // Fixed-pixel terms over every pixel.
-        const double dT = pqt[i] - prev_pqt_[i], dR = ref.pq[i] - prev_ref.pq[i];
-        e += std::abs(dT - dR);
-        dt += std::abs(dT);
-        dr += std::abs(dR);
-        const double inv_denom = 1.0 / (double(ref.adaptation[i]) + kContrastEpsilon);
-        {  // fixed gaze, at the eye's resolution
-          const double fT = std::abs(double(own_adaptation[i]) - prev_ya_test_[i]);
-          const double fR = std::abs(double(ref.adaptation[i]) - prev_ref.adaptation[i]);
-          excess_fixed += std::max(0.0, fT - fR) * inv_denom;
-        }
-        // Along the motion.
-        const Reprojected& rp = warp[std::size_t(x)];
-        if (rp.state == Reprojected::kBackground) {
-          ++n_background;
-          continue;
-        }
-        if (rp.state == Reprojected::kDisoccluded) {
-          ++n_disoccluded;
-          continue;
-        }
-        const double t_prev = prev[2 * k], r_prev = prev[2 * k + 1];
-        const double pq_t_prev = prev_pq[2 * k], pq_r_prev = prev_pq[2 * k + 1];
-        ++k;
-        ++n_valid;
-        ct += std::abs(double(yt[i]) - t_prev) * inv_denom;
-        cr += std::abs(double(ref.y[i]) - r_prev) * inv_denom;
-        cs += std::abs(double(yt[i]) - t_prev) / (double(own_adaptation[i]) + kContrastEpsilon);
-        // One-sided, both frames low-passed at the eye's resolution before the difference.
-        const double lT = std::abs(double(own_adaptation[i]) - rp.sample(prev_ya_test_));
-        const double lR = std::abs(double(ref.adaptation[i]) - rp.sample(prev_ref.adaptation));
-        excess += std::max(0.0, lT - lR) * inv_denom;
-        lag += std::max(0.0, lR - lT) * inv_denom;
-        emc += std::abs((pqt[i] - ref.pq[i]) - (pq_t_prev - pq_r_prev));
+      const double* tm = terms.data();
+      for (int x = 0; x < w; ++x, tm += kRowTerms) {
+        e += tm[0], dt += tm[1], dr += tm[2], excess_fixed += tm[3];
+        ct += tm[4], cr += tm[5], cs += tm[6], excess += tm[7], lag += tm[8], emc += tm[9];
+        const int state = warp.state[std::size_t(x)];
+        n_valid += state == Reprojected::kValid;
+        n_background += state == Reprojected::kBackground;
+        n_disoccluded += state == Reprojected::kDisoccluded;
       }
       row.e = e, row.dt = dt, row.dr = dr, row.excess_fixed = excess_fixed;
       row.ct = ct, row.cr = cr, row.cs = cs, row.excess = excess, row.lag = lag, row.emc = emc;

@@ -182,14 +182,18 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
     });
   for (const auto& t : p.tests) in.tests.push_back(read_colour_frame(t, k, cm, metrics::kXyzD65Space));
   if (p.motion) {
-    MotionVectors v =
-        convert_motion(p.convention, read_frame_channels(p.motion->paths[k], p.motion->channels), p.motion_channels);
-    std::optional<Image> depth;
-    if (p.depth) depth = read_frame_channels(p.depth->paths[k], p.depth->channels);
-    in.motion = flicker_motion(v, depth ? &*depth : nullptr, prev_forward.get());
+    Image raw = read_frame_channels(p.motion->paths[k], p.motion->channels);
+    if (is_flicker_motion(p.convention, p.motion_channels)) {
+      in.motion = std::move(raw);  // glintlab's own four channels: already what the tracker reads
+    } else {
+      MotionVectors v = convert_motion(p.convention, raw, p.motion_channels);
+      std::optional<Image> depth;
+      if (p.depth) depth = read_frame_channels(p.depth->paths[k], p.depth->channels);
+      in.motion = flicker_motion(v, depth ? &*depth : nullptr, prev_forward.get());
+      if (v.forward) in.forward = std::make_shared<const Image>(std::move(*v.forward));
+    }
     for (size_t i = 0; i < in.motion.pixel_count(); ++i)  // counted; the tracker masks them (off-screen)
       in.motion_bad += !(std::isfinite(in.motion.data[4 * i]) && std::isfinite(in.motion.data[4 * i + 1]));
-    if (v.forward) in.forward = std::make_shared<const Image>(std::move(*v.forward));
     in.has_vectors = true;
   }
   if (ref.valid()) {

@@ -125,6 +125,11 @@ MotionVectors convert_motion(MotionConvention c, const Image& raw, const MotionC
   return v;
 }
 
+bool is_flicker_motion(MotionConvention c, const MotionChannels& ch) {
+  // mapping_of(pixels) scales by 1 and flips nothing; flicker_motion takes the distances over depth.
+  return c == MotionConvention::Pixels && ch.backward.size() == 2 && ch.distances.size() == 2 && ch.forward.empty();
+}
+
 Image to_convention(MotionConvention c, const MotionVectors& v) {
   const Mapping m = mapping_of(c);
   const int w = v.backward.width, h = v.backward.height;

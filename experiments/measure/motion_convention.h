@@ -60,6 +60,11 @@ struct MotionVectors {
 };
 // `raw`: the channels of motion_channels() in that order (backward, forward, distances).
 MotionVectors convert_motion(MotionConvention c, const Image& raw, const MotionChannels& channels);
+// Whether files of convention c with these channels hold the flicker's motion image as they are:
+// `pixels` with glintlab's distances (R, G, B, A) and no other vector. Then
+// flicker_motion(convert_motion(c, raw, channels), any depth, any forward) == raw, bit for bit, and
+// the frame is not converted.
+bool is_flicker_motion(MotionConvention c, const MotionChannels& channels);
 // The inverse (tests and `run`'s motion output): glintlab vectors written in convention c, channels
 // in motion_channels() order for that convention (forward and distances when given).
 Image to_convention(MotionConvention c, const MotionVectors& v);

@@ -17,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -603,6 +605,37 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
   EXPECT_FALSE(std::isnan(cell(rows, "taa", 5, "flicker_ratio")));
   const nlohmann::json s = read_json(scratch("bad-counted") / "summary.json");
   EXPECT_TRUE(s["variants"][0]["metrics"]["deltaE2000"]["mean"].is_null());
+}
+
+// glintlab's own vector files (pixels, with the distance channels) are measured as read, without the
+// conversion: that shortcut holds only while the conversion gives them back bit for bit, whatever the
+// depth and the vectors of the frame before, NaN and signed zeros included; no other layout takes it.
+TEST(MotionConvention, OwnVectorsAreTheFlickerMotionAsRead) {
+  Image raw(37, 11, 4);
+  for (size_t i = 0; i < raw.data.size(); ++i) raw.data[i] = float(std::sin(double(i) * 1.7)) * 40.0f;
+  raw.data[5] = std::nanf(""), raw.data[9] = -0.0f, raw.data[14] = -std::numeric_limits<float>::infinity();
+  raw.data[22] = 0.0f, raw.data[31] = -3.0f;  // no surface now; behind the camera before
+  MotionChannels own;
+  own.backward = {"R", "G"};
+  own.distances = {"B", "A"};
+  ASSERT_TRUE(is_flicker_motion(MotionConvention::Pixels, own));
+  Image depth(37, 11, 1), forward(37, 11, 2);
+  for (size_t i = 0; i < depth.data.size(); ++i) depth.data[i] = float(1 + i % 5);
+  for (size_t i = 0; i < forward.data.size(); ++i) forward.data[i] = float(i % 7) - 3.0f;
+  for (bool with : {false, true}) {
+    const Image m = flicker_motion(convert_motion(MotionConvention::Pixels, raw, own), with ? &depth : nullptr,
+                                   with ? &forward : nullptr);
+    ASSERT_EQ(m.channels, 4);
+    ASSERT_EQ(m.data.size(), raw.data.size());
+    EXPECT_EQ(std::memcmp(m.data.data(), raw.data.data(), raw.data.size() * sizeof(float)), 0) << with;
+  }
+  MotionChannels no_distances = own, with_forward = own;
+  no_distances.distances.clear();
+  with_forward.forward = {"B", "A"};
+  EXPECT_FALSE(is_flicker_motion(MotionConvention::Pixels, no_distances));
+  EXPECT_FALSE(is_flicker_motion(MotionConvention::Pixels, with_forward));
+  for (MotionConvention c : {MotionConvention::Blender, MotionConvention::Unreal, MotionConvention::Unity})
+    EXPECT_FALSE(is_flicker_motion(c, own));
 }
 
 // The hash the journal records of every input file: XXH3-128 over the file's bytes in 1 MiB pieces,
