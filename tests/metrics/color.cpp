@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -210,6 +212,35 @@ TEST(ColorConfig, ConvertLeavesAlphaUntouched) {
   EXPECT_EQ(xyz.data[3], 0.5f);
   Image grey(1, 1, 1);
   EXPECT_THROW(cm().convert(grey, "lin_rec709", "ACEScg"), std::invalid_argument);
+}
+
+// RGBA is converted through OCIO's RGBA path in bands of rows: the colours are those of the same
+// image as RGB to the bit, and alpha stays as it was, also beside infinite and NaN colours (where
+// OCIO's matrix would write NaN into it) and across the bands' edges.
+TEST(ColorConfig, RgbaConvertsLikeRgbAndKeepsAlpha) {
+  const int w = 7, h = 37;  // more rows than a band, and not a multiple of it
+  Image rgba(w, h, 4), rgb(w, h, 3);
+  for (int i = 0; i < w * h; ++i)
+    for (int c = 0; c < 4; ++c) {
+      const float v = float(std::sin(1.3 * i + 0.7 * c)) * 2.0f;
+      rgba.data[4 * size_t(i) + c] = v;
+      if (c < 3) rgb.data[3 * size_t(i) + c] = v;
+    }
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  for (Image* im : {&rgba, &rgb}) {
+    im->at(1, 0, 0) = inf, im->at(2, 16, 1) = nan, im->at(3, 36, 2) = -inf;
+  }
+  const Image before = rgba;
+  cm().convert(rgba, "lin_rec709", "CIE-XYZ-D65");
+  cm().convert(rgb, "lin_rec709", "CIE-XYZ-D65");
+  for (int i = 0; i < w * h; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const float a = rgba.data[4 * size_t(i) + c], b = rgb.data[3 * size_t(i) + c];
+      EXPECT_TRUE(std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b))) << i << " " << c;
+    }
+    EXPECT_EQ(std::memcmp(&rgba.data[4 * size_t(i) + 3], &before.data[4 * size_t(i) + 3], sizeof(float)), 0) << i;
+  }
+  EXPECT_NE(rgba.at(0, 0, 0), before.at(0, 0, 0));  // the colours did change
 }
 
 TEST(ColorConfig, UnknownSpaceErrorNamesItAndListsAllowed) {
