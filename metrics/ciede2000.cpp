@@ -156,11 +156,6 @@ double ciede2000(const Lab& lab1, const Lab& lab2, double kL, double kC, double 
   return out;
 }
 
-Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz) {
-  require_same_size(test_xyz, ref_xyz, "ciede2000_map");
-  return ciede2000_map(test_xyz, lab_image(ref_xyz));
-}
-
 LabImage lab_image(const Image& xyz) {
   if (xyz.channels < 3) throw std::invalid_argument("lab_image: the image needs >= 3 channels (X, Y, Z)");
   const std::size_t n = xyz.pixel_count(), w = std::size_t(xyz.width);
@@ -172,21 +167,43 @@ LabImage lab_image(const Image& xyz) {
   return out;
 }
 
-Image ciede2000_map(const Image& test_xyz, const LabImage& ref_lab) {
-  require_reference_size(test_xyz, ref_lab.width, ref_lab.height, "ciede2000_map");
+namespace {
+// ΔE00 of every pixel of test_xyz, a block of a row at a time: the test's L*a*b* as planes beside
+// the reference's, which ref_block(k, n, L, a, b) gives for pixels k .. k + n - 1 (n <= kBlock; into
+// the scratch planes, or as pointers into planes it holds).
+template <typename RefBlock>
+Image ciede2000_rows(const Image& test_xyz, RefBlock&& ref_block) {
   Image m = Image::unfilled(test_xyz.width, test_xyz.height, 1);  // every pixel written below
   const std::size_t w = std::size_t(test_xyz.width), nc = std::size_t(test_xyz.channels);
   parallel_for(long(test_xyz.height), [&](long y) {
-    // The row a block at a time: the test's L*a*b* as planes beside the reference's, then ΔE00.
-    double L[kBlock], a[kBlock], b[kBlock], de[kBlock];
+    double L[kBlock], a[kBlock], b[kBlock], de[kBlock], rL[kBlock], ra[kBlock], rb[kBlock];
     for (std::size_t x0 = 0; x0 < w; x0 += kBlock) {
       const std::size_t n = std::min(kBlock, w - x0), k = std::size_t(y) * w + x0;
       xyz_to_lab_n(test_xyz.data.data() + k * nc, nc, n, L, a, b);
-      ciede2000_n({L, a, b}, {&ref_lab.L[k], &ref_lab.a[k], &ref_lab.b[k]}, de, n);
+      const LabPlanes ref = ref_block(k, n, rL, ra, rb);
+      ciede2000_n({L, a, b}, ref, de, n);
       for (std::size_t i = 0; i < n; ++i) m.data[k + i] = float(de[i]);
     }
   });
   return m;
+}
+}  // namespace
+
+Image ciede2000_map(const Image& test_xyz, const Image& ref_xyz) {
+  require_same_size(test_xyz, ref_xyz, "ciede2000_map");
+  // The reference converted block by block too (the blocks lab_image would convert): no plane of it kept.
+  const std::size_t nc = std::size_t(ref_xyz.channels);
+  return ciede2000_rows(test_xyz, [&](std::size_t k, std::size_t n, double* L, double* a, double* b) {
+    xyz_to_lab_n(ref_xyz.data.data() + k * nc, nc, n, L, a, b);
+    return LabPlanes{L, a, b};
+  });
+}
+
+Image ciede2000_map(const Image& test_xyz, const LabImage& ref_lab) {
+  require_reference_size(test_xyz, ref_lab.width, ref_lab.height, "ciede2000_map");
+  return ciede2000_rows(test_xyz, [&](std::size_t k, std::size_t, double*, double*, double*) {
+    return LabPlanes{&ref_lab.L[k], &ref_lab.a[k], &ref_lab.b[k]};
+  });
 }
 
 }  // namespace glintlab::metrics

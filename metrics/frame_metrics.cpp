@@ -27,11 +27,11 @@ const Image& FrameMetrics::xyz_of(const Image& img, Image& storage) const {
   return storage;
 }
 
-FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear) const {
-  return prepare(std::make_shared<const Image>(ref_linear));
+FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear, bool shared) const {
+  return prepare(std::make_shared<const Image>(ref_linear), shared);
 }
 
-FrameMetrics::Reference FrameMetrics::prepare(std::shared_ptr<const Image> ref_linear) const {
+FrameMetrics::Reference FrameMetrics::prepare(std::shared_ptr<const Image> ref_linear, bool shared) const {
   Reference r;
   r.xyz = space_ == kXyzD65Space ? ref_linear : std::make_shared<const Image>(cm_.to_xyz_d65(*ref_linear, space_));
   r.metric_xyz = options_.display_view.empty()
@@ -41,7 +41,7 @@ FrameMetrics::Reference FrameMetrics::prepare(std::shared_ptr<const Image> ref_l
   // The reference side of the per-pixel metrics that have one, converted once for every variant.
   auto measured = [&](const char* m) { return std::find(per_pixel_.begin(), per_pixel_.end(), m) != per_pixel_.end(); };
   if (options_.flip_hdr && measured("flip")) r.flip.emplace(*r.metric_xyz, options_.flip_ppd);
-  if (measured("deltaE2000")) r.lab = lab_image(*r.metric_xyz);
+  if (measured("deltaE2000") && shared) r.lab = lab_image(*r.metric_xyz);
   if (measured("deltaEITP")) r.ictcp = ictcp_image(*r.metric_xyz, options_.itp_luminance_nits);
   return r;
 }

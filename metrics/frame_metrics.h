@@ -49,11 +49,14 @@ class FrameMetrics {
     std::shared_ptr<const Image> metric_xyz;  // what per-pixel metrics compare (display-referred when a view is set)
     std::shared_ptr<const FlickerReference> flicker;  // the flicker metric's view of it (trackers keep it)
     std::optional<HdrFlipReference> flip;   // HDR-FLIP's per-exposure state, when FLIP is measured
-    std::optional<LabImage> lab;            // L*a*b* of metric_xyz, when ΔE00 is measured
+    std::optional<LabImage> lab;            // L*a*b* of metric_xyz, when ΔE00 is measured and shared
     std::optional<ICtCpImage> ictcp;        // ICtCp of metric_xyz, when ΔE_ITP is measured
   };
-  Reference prepare(const Image& ref_linear) const;
-  Reference prepare(std::shared_ptr<const Image> ref_linear) const;  // the same without a copy of the frame
+  // `shared`: more than one test will be measured against this reference. Then its L*a*b* (ΔE00's
+  // side of it) is converted once here and kept; for one test ΔE00 converts it block by block beside
+  // the test's (the same values, without three frame-sized planes of doubles).
+  Reference prepare(const Image& ref_linear, bool shared = true) const;
+  Reference prepare(std::shared_ptr<const Image> ref_linear, bool shared = true) const;  // without a copy of the frame
 
   // All values of `test_linear` against `ref`; feeds `flicker` (the variant's
   // tracker) with the frame's motion target. `cost_ms`, if given, receives the

@@ -177,7 +177,7 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
     ref = std::async(std::launch::async, [&] {
       PreparedReference r{read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space), nullptr, {}};
       r.base = std::make_shared<const Image>(std::move(r.frame.image));
-      r.prepared = measure.prepare(r.base);
+      r.prepared = measure.prepare(r.base, p.tests.size() > 1);
       return r;
     });
   for (const auto& t : p.tests) in.tests.push_back(read_colour_frame(t, k, cm, metrics::kXyzD65Space));
@@ -432,8 +432,9 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       return read_inputs(p, size_t(k), cm, measure, prev_forward);
     });
   };
-  // The loop's working set in 2 MiB pages: about 280 bytes a pixel and 70 more for each test (peak
-  // resident memory at 1920x1080: 630–670 MB with one test, 783 MB with two), at most what one call takes.
+  // The loop's working set in 2 MiB pages: at most about 280 bytes a pixel and 70 more for each test
+  // (peak resident memory at 1920x1080: 570 MB with one test, whose reference's L*a*b* is not kept,
+  // 796 MB with two), at most what one call takes.
   reserve_heap_in_huge_pages(
       std::min(size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size()), kMaxHugeReservation));
   std::future<FrameInput> next;

@@ -111,7 +111,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         rec.image = &*img;
         if (own_frame)
           for (RecordSink* s : sinks) s->reference(rec);
-        prepared[r] = m.measure->prepare(*img);
+        prepared[r] = m.measure->prepare(*img, m.plan.references[r].variants.size() > 1);
         continue;
       }
       const std::string key = m.plan.reference_key(int(r), in.uniforms);
@@ -137,7 +137,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       ref_scan[r] = metrics::scan_pixels(*img, 3);
       if (own_frame)
         for (RecordSink* s : sinks) s->reference(rec);
-      prepared[r] = m.measure->prepare(*img);
+      prepared[r] = m.measure->prepare(*img, m.plan.references[r].variants.size() > 1);
     }
     for (size_t r = 0; r < m.references.size(); ++r)
       if (work.reference[r][kk] && own_frame && !ref_scan[r].clean())
