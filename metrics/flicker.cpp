@@ -228,7 +228,8 @@ std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>
       Reprojected& r = out[std::size_t(y) * std::size_t(motion.width) + std::size_t(x)];
       r.state = Reprojected::State(warp.state[std::size_t(x)]);
       if (r.state != Reprojected::kValid) continue;  // a masked pixel has no taps
-      for (int k = 0; k < 4; ++k) r.idx[k] = unsigned(warp.idx[k][std::size_t(x)]), r.weight[k] = warp.weight[k][std::size_t(x)];
+      for (int k = 0; k < 4; ++k)
+        r.idx[k] = unsigned(warp.idx[k][std::size_t(x)]), r.weight[k] = warp.weight[k][std::size_t(x)];
     }
   });
   return out;

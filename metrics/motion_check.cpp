@@ -28,9 +28,10 @@ inline double bilinear(const double* p, int w, int h, double qx, double qy) {
 
 // One candidate's term of row y's checked pixels (x = kMotionCheckStride j, j < count), into out[j]:
 // |now − before| along the vectors with signs (sx, sy) (given: (-1, -1), negated: (+1, +1), y flipped:
-// (-1, +1), x flipped: (+1, -1)); 0 where the pixel does not count (ok[j] = 0). The row's motion comes compacted (vx, vy, each `count` long), and the loop is
-// branch-free, so that it vectorises (one candidate a loop: GCC 12 does not take all four at once);
-// a pixel that does not count looks up with vectors of 0.
+// (-1, +1), x flipped: (+1, -1)); 0 where the pixel does not count (ok[j] = 0). The row's motion
+// comes compacted (vx, vy, each `count` long), and the loop is branch-free, so that it vectorises
+// (one candidate a loop: GCC 12 does not take all four at once); a pixel that does not count looks
+// up with vectors of 0.
 GLINTLAB_AVX2_CLONES void explained_term(const double* __restrict mx, const double* __restrict my,
                                          const int* __restrict ok, const double* __restrict p0,
                                          const double* __restrict p1, int w, int h, int y, int count, double sx,
@@ -74,7 +75,8 @@ MotionExplained motion_explained(const NoFillVector<double>& p0, const NoFillVec
       const double qx = x - vx, qy = y - vy;  // (NaN fails every comparison)
       ok[size_t(j)] = m[2] > 0.0f && !(m[3] < 0.0f) && qx >= 0 && qy >= 0 && qx <= w - 1 && qy <= h - 1;
       mv[size_t(j)] = vx, mv[n + size_t(j)] = vy;
-      terms[size_t(j)] = ok[size_t(j)] ? std::abs(p1[size_t(y) * size_t(w) + size_t(x)] - p0[size_t(y) * size_t(w) + size_t(x)]) : 0.0;
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      terms[size_t(j)] = ok[size_t(j)] ? std::abs(p1[i] - p0[i]) : 0.0;
     }
     // The candidates take x - vx or x + vx and y - vy or y + vy: given (-, -), negated (+, +),
     // y flipped (-, +), x flipped (+, -).
