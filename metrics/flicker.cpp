@@ -122,19 +122,19 @@ GLINTLAB_AVX2_CLONES void reproject_pixels(const float* __restrict m, int w, int
     const double t0 = (1 - fx) * (1 - fy), t1 = fx * (1 - fy), t2 = (1 - fx) * fy, t3 = fx * fy;
     const int j0 = y0 * w + x0, j1 = y0 * w + x1, j2 = y1 * w + x0, j3 = y1 * w + x1;
     const double p0 = prev_distance[j0], p1 = prev_distance[j1], p2 = prev_distance[j2], p3 = prev_distance[j3];
-    // A tap that saw no surface, or a surface far off the point's distance (another object across a
-    // silhouette), contaminates the sample.
-    const double far = kSilhouetteTolerance * d_prev;
-    const int taps = !((t0 > 0.0) & !(std::abs(p0 - d_prev) <= far)) & !((t1 > 0.0) & !(std::abs(p1 - d_prev) <= far)) &
-                     !((t2 > 0.0) & !(std::abs(p2 - d_prev) <= far)) & !((t3 > 0.0) & !(std::abs(p3 - d_prev) <= far));
-    // On a smooth surface the interpolated distance is the point's; across a silhouette it mixes the
-    // two surfaces and misses it.
-    double d_interp = 0.0;
-    d_interp += t0 * p0;
-    d_interp += t1 * p1;
-    d_interp += t2 * p2;
-    d_interp += t3 * p3;
-    const int ok = inside & taps & (std::abs(d_interp - d_prev) <= tolerance * d_prev);
+    // A tap that saw no surface contaminates the sample.
+    const int taps = !((t0 > 0.0) & !(p0 > 0.0)) & !((t1 > 0.0) & !(p1 > 0.0)) & !((t2 > 0.0) & !(p2 > 0.0)) &
+                     !((t3 > 0.0) & !(p3 > 0.0));
+    // The inverse distance of a plane is (nearly) affine on the screen, so its bilinear interpolation
+    // is the point's at any angle of view, however fast the distance itself grows toward a horizon;
+    // across a silhouette it mixes the two surfaces and misses the point's by the other surface's
+    // weight times the jump. (A tap of no surface has been flagged above; 1/0 is kept out of the sum.)
+    double inv_interp = 0.0;
+    inv_interp += t0 / (p0 > 0.0 ? p0 : 1.0);
+    inv_interp += t1 / (p1 > 0.0 ? p1 : 1.0);
+    inv_interp += t2 / (p2 > 0.0 ? p2 : 1.0);
+    inv_interp += t3 / (p3 > 0.0 ? p3 : 1.0);
+    const int ok = inside & taps & (std::abs(inv_interp * d_prev - 1.0) <= tolerance);
     const int background = !(px[2] > 0.0f);
     state[x] = background + (1 - background) * (2 - 2 * ok);  // kBackground, else kValid or kDisoccluded
     i0[x] = j0, i1[x] = j1, i2[x] = j2, i3[x] = j3;

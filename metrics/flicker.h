@@ -25,11 +25,15 @@
 // Masked (left out of every along-the-motion mean, and counted):
 //   background: no surface at p in frame t (the sky);
 //   disoccluded: p - v_t lies outside the image, the point was behind the
-//     previous camera, the previous frame's distance interpolated at p - v_t
-//     differs from the point's own distance in frame t-1 by more than 5 %
-//     (another surface was in front of it), or one of the bilinear taps saw no
-//     surface or one more than 25 % off that distance (the taps straddle a
-//     silhouette: the sample would mix in another surface).
+//     previous camera, one of the bilinear taps at p - v_t saw no surface, or
+//     the previous frame's *inverse* distance interpolated there differs from
+//     the point's own in frame t-1 by more than 5 % (relative). The inverse
+//     distance of a plane is nearly affine on the screen (exactly so for
+//     depth), so on one surface its interpolation is the point's at any angle
+//     of view, however fast the distance grows toward a horizon; where another
+//     surface was in front, or taps straddle a silhouette, it misses by the
+//     other surface's weight times the jump (the sample would mix in that
+//     surface).
 // Also reported:
 //   temporal_error    = mean |e_t - e_{t-1}| per pixel (all pixels, no motion), e = PQ(Y_T) - PQ(Y_R)
 //                       in PQ code values (Y = 1 at 100 cd/m^2): the error's change at a fixed pixel
@@ -79,8 +83,7 @@ namespace glintlab::metrics {
 constexpr double kFlickerReferenceNits = 100.0;  // cd/m^2 for Y = 1 (PQ encodings)
 constexpr double kAdaptationSigmaPx = 2.0;
 constexpr double kContrastEpsilon = 0.01;
-constexpr double kDisocclusionTolerance = 0.05;  // interpolated distance vs the point's
-constexpr double kSilhouetteTolerance = 0.25;    // any single tap vs the point's
+constexpr double kDisocclusionTolerance = 0.05;  // interpolated inverse distance vs the point's
 
 // PQ(max(Y, 0) * reference_nits): the perceptual luminance of temporal_error.
 double perceptual_luminance(double Y, double reference_nits = kFlickerReferenceNits);

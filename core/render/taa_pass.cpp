@@ -9,9 +9,10 @@ constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct TaaPush {
   float width, height, alpha, gamma;
-  float history_valid, disocclusion_tolerance, reactive, glint_alpha;
+  float history_valid, disocclusion_tolerance, jitter_change_x, jitter_change_y;
+  float reactive, glint_alpha, unused0, unused1;
 };
-static_assert(sizeof(TaaPush) == 32, "TaaPush must match taa.frag");
+static_assert(sizeof(TaaPush) == 48, "TaaPush must match taa.frag");
 
 enum Binding : uint32_t { kColor = 0, kMotion, kHistoryIn, kLumaIn, kGlint, kExtraIn };
 }  // namespace
@@ -32,6 +33,7 @@ std::vector<std::string> TaaPass::defines(const TaaSettings& s, bool quad_share)
           std::string("TAA_GLINT_LAYER=") + (s.glint_layer ? "1" : "0"),
           "TAA_GLINT_CLAMP=" + std::to_string(int(s.glint_clamp)),
           std::string("TAA_GLINT_LOCK=") + (s.glint_lock ? "1" : "0"),
+          std::string("TAA_DISOCCLUSION=") + (s.disocclusion ? "1" : "0"),
           std::string("TAA_QUAD_SHARE=") + (quad_share ? "1" : "0")};
 }
 
@@ -125,10 +127,16 @@ void TaaPass::setup(const TargetSet& t) {
   }
 }
 
-void TaaPass::record(VkCommandBuffer cmd, const FrameInputs&, const TargetSet& t) {
+void TaaPass::record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet& t) {
+  // This frame's jitter (TAA renders one sample a pixel) and its change since the frame the history
+  // holds, for the disocclusion test's lookup of the history's point-sampled distances.
+  const glm::vec2 jitter = in.samples.empty() ? glm::vec2(0.0f) : glm::vec2(in.samples[0].jitter_weight);
+  const bool history = t.history_valid("taa.history");
+  const glm::vec2 change = history ? prev_jitter_ - jitter : glm::vec2(0.0f);
+  prev_jitter_ = jitter;
   TaaPush p{float(t.width()), float(t.height()), float(s_.alpha), float(s_.gamma),
-            t.history_valid("taa.history") ? 1.0f : 0.0f, float(s_.disocclusion_tolerance), float(s_.reactive),
-            float(s_.glint_alpha)};
+            history ? 1.0f : 0.0f, float(s_.disocclusion_tolerance), change.x, change.y,
+            float(s_.reactive), float(s_.glint_alpha), 0.0f, 0.0f};
   const int slot = t.current_slot("taa.history");
   const VkRect2D area{{0, 0}, {uint32_t(t.width()), uint32_t(t.height())}};
   const VkViewport viewport{0, 0, float(t.width()), float(t.height()), 0, 1};

@@ -2,12 +2,13 @@
 // jittered colour with the reprojected history that the frame graph keeps
 // across frames. Reads "color" and "motion" (the surface pass with motion on);
 // keeps "taa.history" (rgb = resolved colour, a = the surface distance at the
-// pixel, for the disocclusion test) and, with anti_flicker, "taa.luma" (the
+// pixel: with the disocclusion test, the nearest of its 3x3) and, with anti_flicker, "taa.luma" (the
 // last lumas of the pixel) and, with `accumulate` or `glint_layer`, "taa.extra" (rgb = the glint
 // layer's history, a = the frames accumulated at the pixel); with a glint-aware option it reads
 // "glint" (the surface pass's glint layer); writes "taa.color" (rgb resolved, a = coverage).
-// History restarts at camera cuts (the graph drops it), at disocclusions and
-// off-screen reprojections (per pixel), and wherever it is not finite.
+// History restarts at camera cuts (the graph drops it), at off-screen
+// reprojections (per pixel), wherever it is not finite and, with the option
+// `disocclusion`, where the surface it holds is not the one seen now.
 #pragma once
 
 #include "core/render/pass.h"
@@ -51,6 +52,7 @@ class TaaPass final : public Pass {
   Pipeline pipeline_;
   Sampler sampler_;
   DescriptorSet sets_[2];  // one per history slot parity
+  glm::vec2 prev_jitter_{0.0f};  // the jitter of the frame last recorded
 };
 
 }  // namespace glintlab::core

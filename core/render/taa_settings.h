@@ -4,8 +4,8 @@
 // (RenderPasses/Antialiasing/TAA: Halton(2,3) x16 jitter, alpha 0.1, clamp to
 // mean +- 1.0 sigma over 3x3 in YCgCo, Catmull-Rom history, the longest
 // motion vector in 3x3, Karis' alpha' = alpha d / (d + box range) near the
-// box edge, no HDR weighting). Options beyond Falcor, all off by default:
-// `dering`, `anti_flicker`, and the glint-aware ones below (`accumulate`,
+// box edge, no HDR weighting, no depth test). Options beyond Falcor, all off by
+// default: `dering`, `anti_flicker`, `disocclusion`, and the glint-aware ones below (`accumulate`,
 // `reactive`, `glint_layer`, `glint_lock`), which read the glint layer the
 // surface pass writes (core/render/surface_pass.h, option `glint`).
 #pragma once
@@ -96,8 +96,13 @@ struct TaaSettings {
   // "ShadingRejection.Flickering"): pixels whose luma alternated in sign over
   // the last frames keep more of their unrectified history.
   bool anti_flicker = false;
-  // Relative distance mismatch above which reprojected history is a
-  // disocclusion and the pixel restarts from the current frame.
+  // The disocclusion test (not in Falcor's pass, which relies on the rectification alone): the
+  // history restarts where the nearest surface of the pixel's 3x3 was not where the history holds it
+  // (passes/taa.frag, same_surface: FSR2's dilated depth and reconstructed previous depth, the
+  // history's point-sampled distance read where the jittered sample saw the point, and an allowance
+  // of the local slope of the distance so that jitter and motion within one surface do not restart).
+  bool disocclusion = false;
+  // With `disocclusion`: the relative distance mismatch, beyond the slope allowance, that restarts.
   double disocclusion_tolerance = 0.05;
 
   // ---- glint-aware options (passes/taa.frag's header states each mapping)

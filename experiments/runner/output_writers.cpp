@@ -38,6 +38,7 @@ nlohmann::json taa_json(const core::TaaSettings& t) {
           {"feedback", enum_name(core::kTaaFeedbackNames, t.feedback)},
           {"hdr", enum_name(core::kTaaHdrNames, t.hdr)},
           {"anti_flicker", t.anti_flicker},
+          {"disocclusion", t.disocclusion},
           {"disocclusion_tolerance", t.disocclusion_tolerance}};
 }
 

@@ -63,6 +63,7 @@ core::TaaSettings parse_taa(JsonReader& r) {
   t.feedback = get_named(r, "feedback", core::kTaaFeedbackNames, t.feedback);
   t.hdr = get_named(r, "hdr", core::kTaaHdrNames, t.hdr);
   t.anti_flicker = r.get_bool("anti_flicker", t.anti_flicker);
+  t.disocclusion = r.get_bool("disocclusion", t.disocclusion);
   t.disocclusion_tolerance = r.get_number("disocclusion_tolerance", t.disocclusion_tolerance, 1e-4, 10.0);
   t.accumulate = r.get_bool("accumulate", t.accumulate);
   t.reactive = r.get_number("reactive", t.reactive, 0.0, 1.0);
@@ -70,6 +71,8 @@ core::TaaSettings parse_taa(JsonReader& r) {
   t.glint_alpha = r.get_number("glint_alpha", t.glint_alpha, 1e-4, 1.0);
   t.glint_clamp = get_named(r, "glint_clamp", core::kTaaGlintClampNames, t.glint_clamp);
   t.glint_lock = r.get_bool("glint_lock", t.glint_lock);
+  if (!t.disocclusion && r.has("disocclusion_tolerance"))
+    r.fail("disocclusion_tolerance", "only applies with \"disocclusion\": true");
   if (!t.glint_layer && (r.has("glint_alpha") || r.has("glint_clamp")))
     r.fail(r.has("glint_alpha") ? "glint_alpha" : "glint_clamp", "only applies with \"glint_layer\": true");
   r.finish();

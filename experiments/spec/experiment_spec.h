@@ -13,7 +13,7 @@
 //                  "taa": {"jitter": "halton16", "alpha": 0.1, "clamp": "variance", "gamma": 1.0,
 //                          "space": "ycocg", "history_filter": "catmull_rom", "dering": false,
 //                          "velocity": "longest", "feedback": "karis", "hdr": "none", "anti_flicker": false,
-//                          "disocclusion_tolerance": 0.05},       // taa only; defaults = Falcor
+//                          "disocclusion": false, "disocclusion_tolerance": 0.05},  // taa only; defaults = Falcor
 //                  "debug": "final" | <debug output>, "material": {<overrides>}} ],
 //   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
 //   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],  // and the groups "flicker",

@@ -17,7 +17,8 @@
 // fixed feedback, no HDR mapping; bilinear history with clamp none or
 // variance, Catmull-Rom history with clamp none) are compared with an fp64
 // model of the resolve: out = (1 - alpha) h + alpha current where the history
-// is valid (not the first frame, on screen, no disocclusion at the four taps,
+// is valid (not the first frame, on screen, the surface the history holds (the
+// disocclusion test of passes/taa.frag, modelled in fp64),
 // finite), else current; h = the bilinear or Catmull-Rom (4x4 texels,
 // negative results to 0) resample of the last output at p + 1/2 - v, clamped
 // to mean +- gamma sigma of the 3x3 current colours for the variance
@@ -62,6 +63,7 @@ Config simple_config() {
   c.s.velocity = core::TaaVelocity::Center;
   c.s.feedback = core::TaaFeedback::Fixed;
   c.s.hdr = core::TaaHdr::None;
+  c.s.disocclusion = true;
   c.fp64 = true;
   return c;
 }
@@ -154,19 +156,44 @@ double model_pixel(const Image& cur, const Image* prev, const Image& motion, con
     return double(img.at(i, j, ch));
   };
   auto at = [&](int i, int j) { return tap(*prev, i, j, c); };
-  // disocclusion: the distances kept with the history at the four taps
-  const double d[4] = {tap(*prev_motion, ix, iy, 2), tap(*prev_motion, ix + 1, iy, 2), tap(*prev_motion, ix, iy + 1, 2),
-                       tap(*prev_motion, ix + 1, iy + 1, 2)};
-  const double wt[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  double dw = 0;
-  for (int k = 0; k < 4; ++k) dw += wt[k] * d[k];
-  const double z = motion.at(x, y, 2), w = motion.at(x, y, 3);
-  bool valid;
-  if (z > 0) {
-    valid = w > 0 && std::fabs(dw - w) <= tol * w;
-    for (int k = 0; k < 4; ++k) valid = valid && !(std::fabs(d[k] - w) > 5 * tol * w && wt[k] > 0);
-  } else {
-    valid = dw <= 0;
+  // disocclusion (passes/taa.frag, same_surface; the stress frames have no jitter): the nearest
+  // surface of the 3x3 now, and the nearest of the 3x3 last frame (what the history keeps) at the
+  // texel under that surface's reprojected position, within tol plus a pixel of the local slope
+  auto nearest = [&](const Image& m, int cx, int cy) {  // {x, y} of the nearest surface, or {-1, -1}
+    int bx = -1, by = -1;
+    double best = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int i = std::min(std::max(cx + dx, 0), W - 1), j = std::min(std::max(cy + dy, 0), H - 1);
+        const double z = m.at(i, j, 2);
+        if (z > 0 && (bx < 0 || z < best || (z == best && dx == 0 && dy == 0))) bx = i, by = j, best = z;
+      }
+    return std::pair{bx, by};
+  };
+  const auto [nx, ny] = nearest(motion, x, y);
+  auto slope = [&](int dx, int dy) {  // axis_slope along (dx, dy)
+    const double zm = std::max(0.0, tap(motion, x - dx, y - dy, 2)), z0 = std::max(0.0, double(motion.at(x, y, 2))),
+                 zp = std::max(0.0, tap(motion, x + dx, y + dy, 2));
+    const bool l = zm > 0 && z0 > 0, r = zp > 0 && z0 > 0;
+    const double a = l ? std::fabs(z0 - zm) : 0, b = r ? std::fabs(zp - z0) : 0;
+    if (!(l && r)) return a + b;
+    const bool bending = (z0 - zm) * (zp - z0) > 0 && std::max(a, b) <= 4 * std::min(a, b);
+    return bending ? std::max(a, b) : std::min(a, b);
+  };
+  const float ux = float(x) + 0.5f - (nx < 0 ? 0.0f : motion.at(nx, ny, 0)),
+              uy = float(y) + 0.5f - (nx < 0 ? 0.0f : motion.at(nx, ny, 1));
+  bool valid = ux >= -1.0f && uy >= -1.0f && ux <= float(W) + 1 && uy <= float(H) + 1;
+  if (valid) {
+    const int tx = int(std::min(std::max(ux, 0.0f), float(W) - 0.5f)),
+              ty = int(std::min(std::max(uy, 0.0f), float(H) - 0.5f));
+    const auto [hx, hy] = nearest(*prev_motion, tx, ty);
+    const double held = hx < 0 ? 0.0 : double(prev_motion->at(hx, hy, 2));
+    if (nx < 0) {
+      valid = held <= 0;
+    } else {
+      const double w = motion.at(nx, ny, 3);
+      valid = w > 0 && std::fabs(held - w) <= tol * w + slope(1, 0) + slope(0, 1);
+    }
   }
   if (!valid) return current;
   auto mix = [](double a, double b, double t) { return a * (1 - t) + b * t; };
@@ -416,7 +443,11 @@ void add_taa_cases(std::vector<Case>& cases) {
     std::vector<TaaFrame> f;
     const float dist[] = {3, 3, 6, 6, 3, 3};
     for (float d : dist) f.push_back({glm::vec3(64.0f), 2, 0.04f, true, {0.37f, -0.61f}, d});
-    specs.push_back({"taa.disocclusion", true, plus_glint_configs({simple_config(), falcor_config()}), f, 32, 18,
+    Config falcor_tested = falcor_config();
+    falcor_tested.label = "falcor-disocclusion";
+    falcor_tested.s.disocclusion = true;
+    specs.push_back({"taa.disocclusion", true, plus_glint_configs({simple_config(), falcor_config(), falcor_tested}),
+                     f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,
                      "sparse glints (4 % at 64) moving (0.37, -0.61) a frame, every pixel disoccluded twice (the "
                      "distance kept with the history 3, the current frame's previous distance 6, and back)"});

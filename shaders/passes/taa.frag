@@ -6,10 +6,9 @@
 // Per pixel p (texel centre c = p + 0.5):
 //   1. v = motion vector chosen by TAA_VELOCITY; the history is at q = c - v.
 //   2. History is invalid (the pixel restarts from the current colour) in the
-//      first frame after a reset or camera cut, when q is off-screen, when the
-//      point was behind the previous camera, when the surface stored at q is not
-//      the reprojected point (distance mismatch: a disocclusion; taps across a
-//      silhouette), or when the resampled history is not finite.
+//      first frame after a reset or camera cut, when q is off-screen, or when the
+//      resampled history is not finite; with TAA_DISOCCLUSION also where the
+//      surface the history holds is not the one seen now (same_surface below).
 //   3. Samples are mapped for HDR (TAA_HDR), then to the box space (TAA_SPACE);
 //      the history is rectified against the 3x3 neighbourhood (TAA_CLAMP).
 //   4. out = mix(history, current, alpha'), alpha' from TAA_FEEDBACK (and the
@@ -49,7 +48,7 @@
 
 layout(set = 0, binding = 0) uniform sampler2D color_tex;     // this frame, jittered, RGBA32F
 layout(set = 0, binding = 1) uniform sampler2D motion_tex;    // common/motion.glsl layout
-layout(set = 0, binding = 2) uniform sampler2D history_tex;   // last frame's resolve: rgb, a = distance
+layout(set = 0, binding = 2) uniform sampler2D history_tex;   // last frame's resolve: rgb, a = nearest distance
 layout(set = 0, binding = 3) uniform sampler2D luma_tex;      // anti-flicker: last lumas
 layout(set = 0, binding = 4) uniform sampler2D glint_tex;     // the surface pass's glint layer (TAA_GLINT)
 layout(set = 0, binding = 5) uniform sampler2D extra_tex;     // taa.extra of last frame (TAA_EXTRA)
@@ -70,7 +69,8 @@ layout(location = TAA_EXTRA_LOCATION) out vec4 out_extra;  // taa.extra: rgb gli
 
 layout(push_constant) uniform Push {
   vec4 size_alpha_gamma;  // width, height, alpha, gamma
-  vec4 valid_tol;         // history valid (0/1), disocclusion tolerance, reactive, glint_alpha
+  vec4 history_jitter;    // history valid (0/1), disocclusion tolerance, jitter of frame t-1 minus frame t (px)
+  vec4 glint_weights;     // reactive, glint_alpha
 };
 
 #define CLAMP_NONE 0
@@ -130,6 +130,9 @@ layout(push_constant) uniform Push {
 #endif
 #ifndef TAA_GLINT_LOCK
 #define TAA_GLINT_LOCK 0
+#endif
+#ifndef TAA_DISOCCLUSION
+#define TAA_DISOCCLUSION 0
 #endif
 
 ivec2 g_size;
@@ -297,12 +300,55 @@ vec3 clip_to_box(vec3 h, vec3 lo, vec3 hi) {
 
 bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
+#if TAA_DISOCCLUSION
+// The disocclusion test: does the history hold the surface seen now? The history keeps, in its
+// alpha, the distance of the nearest surface of its pixel's 3x3 (0: all sky), and the test takes the
+// nearest surface of the 3x3 now. With the nearest of the neighbourhood (FSR2's dilated depth), an
+// edge pixel's distance is the near side's in every frame, whichever side its jittered sample hit,
+// so a ridge or silhouette keeps its history and converges like supersampling. The nearest pixel's
+// own motion and previous distance say where that surface was and how far (FSR2's reconstructed
+// previous depth).
+//
+// The history's distances are point samples at last frame's jittered positions. The test reads them
+// where the point was among those samples: q_n (the pixel centre moved back by the nearest's motion)
+// plus the change of jitter j_{t-1} - j_t (the camera of frame t sees at pixel centre c the point
+// whose unjittered position is c - j_t, core/scene/camera.h; texel i of the history sampled
+// i + 1/2 - j_{t-1}). Between samples on one surface the distance lies between theirs, however fast
+// it changes (toward a horizon it changes by 5-100 % from one pixel to the next): the point's
+// previous distance must lie within the range of the bilinear taps around that position (those of
+// weight > 0), widened by the relative tolerance. The sky counts as infinitely far: a tap of sky
+// leaves the range open above, and a pixel with no surface in its 3x3 needs a tap of sky.
+// near: the motion texel of the nearest surface of the 3x3 (z = 0 where there is none); u: q_n plus
+// the jitter change (continuous pixel coordinates).
+bool same_surface(vec4 near, vec2 u, float tol) {
+  // Off the image by more than a pixel (or not finite): the surface was not seen.
+  if (!(all(greaterThanEqual(u, vec2(-1.0))) && all(lessThanEqual(u, vec2(g_size) + 1.0)))) return false;
+  Taps k = taps_2x2(history_tex, clamp(u, vec2(0.5), vec2(g_size) - 0.5));
+  vec4 held = vec4(k.a.a, k.b.a, k.c.a, k.d.a);
+  bvec4 tap = bvec4(true, k.f.x > 0.0, k.f.y > 0.0, k.f.x > 0.0 && k.f.y > 0.0);  // bilinear weight > 0
+  float lo = 3.4e38, hi = 0.0;
+  bool sky = false;
+  for (int i = 0; i < 4; ++i)
+    if (tap[i]) {
+      if (held[i] > 0.0) {
+        lo = min(lo, held[i]);
+        hi = max(hi, held[i]);
+      } else {
+        sky = true;
+      }
+    }
+  if (!(near.z > 0.0)) return sky;   // no surface now: the sky was there
+  if (!(near.w > 0.0)) return false; // behind the previous camera
+  float w = near.w, slack = tol * w;
+  return w >= lo - slack && (sky || w <= hi + slack);
+}
+#endif
+
 void main() {
   g_size = ivec2(size_alpha_gamma.xy);
   ivec2 p = ivec2(gl_FragCoord.xy);  // the pixel: the viewport is the image
   float alpha = size_alpha_gamma.z, gamma = size_alpha_gamma.w;
-  bool valid = valid_tol.x > 0.5;
-  float tol = valid_tol.y;
+  bool valid = history_jitter.x > 0.5;
 
   // ---- current neighbourhood (HDR-mapped, in box space) and motion
   vec4 centre_px = fetch(color_tex, p);
@@ -322,6 +368,10 @@ void main() {
   vec2 v = mc.xy;
   float best_d = mc.z > 0.0 ? mc.z : 3.4e38, best_len = dot(mc.xy, mc.xy);
   nb[4] = cur;  // the centre: its colour and motion are fetched above (on llvmpipe a fetch is ~3 % of the resolve)
+#if TAA_DISOCCLUSION
+  vec4 near = mc;  // the nearest surface of the 3x3 (the centre first: ties keep it)
+  if (!(near.z > 0.0)) near = vec4(0.0);
+#endif
 #if TAA_QUAD_SHARE
   ivec2 out_dir = 2 * (p & 1) - 1;  // away from the centre of this pixel's quad
   vec3 qc[3][3];
@@ -349,6 +399,9 @@ void main() {
 #elif TAA_VELOCITY == VELOCITY_LONGEST
       float l = dot(mo.xy, mo.xy);
       if (l > best_len) { best_len = l; v = mo.xy; }
+#endif
+#if TAA_DISOCCLUSION
+      if (mo.z > 0.0 && (!(near.z > 0.0) || mo.z < near.z)) near = mo;
 #endif
     }
   // Mean and standard deviation of the neighbourhood (the variance clamp), in
@@ -381,26 +434,13 @@ void main() {
   vec2 q = vec2(p) + 0.5 - v;
   bool on_screen = all(greaterThanEqual(q, vec2(0.0))) && all(lessThanEqual(q, vec2(g_size))) && finite3(vec3(q, 0.0));
   if (!on_screen) valid = false;
+#if TAA_DISOCCLUSION
+  if (valid) valid = same_surface(near, vec2(p) + 0.5 - near.xy + history_jitter.zw, history_jitter.y);
+#endif
   Taps k;
-  if (valid) {
-    // The distances stored with last frame's history (0 = sky), at the four
-    // bilinear taps around q: the same rule as the flicker metric's mask
-    // (metrics/flicker.h): the interpolated distance matches the point's own
-    // distance last frame, and no tap lies on another surface.
-    k = taps_2x2(history_tex, q);
-    vec2 f = k.f;
-    vec4 d = vec4(k.a.a, k.b.a, k.c.a, k.d.a);
-    vec4 wt = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
-    if (mc.z > 0.0) {
-      bvec4 off = greaterThan(abs(d - mc.w), vec4(5.0 * tol * mc.w));
-      bool tap_off = (off.x && wt.x > 0.0) || (off.y && wt.y > 0.0) || (off.z && wt.z > 0.0) || (off.w && wt.w > 0.0);
-      valid = mc.w > 0.0 && !tap_off && abs(dot(wt, d) - mc.w) <= tol * mc.w;
-    } else {
-      valid = dot(wt, d) <= 0.0;  // sky now: sky then
-    }
-  }
   vec3 hist_lin = vec3(0.0);
   if (valid) {
+    k = taps_2x2(history_tex, q);
 #if TAA_FILTER == FILTER_CATMULL_ROM
     hist_lin = catmull_rom(history_tex, k);
 #else
@@ -467,7 +507,7 @@ void main() {
     if (share > 0.5 && space_luma(raw) >= 0.5 * space_luma(cur)) h = raw;
 #endif
 #if TAA_REACTIVE
-    float r = valid_tol.z * share;
+    float r = glint_weights.x * share;
     h = mix(h, raw, r);
     a = mix(a, 1.0, r);
 #endif
@@ -503,7 +543,7 @@ void main() {
       }
     g_hist = clamp(g_hist, g_lo, g_hi);
 #endif
-    float ag = valid_tol.w;
+    float ag = glint_weights.y;
 #if TAA_ACCUMULATE
     ag = max(ag, 1.0 / n);
 #endif
@@ -513,11 +553,15 @@ void main() {
   lin = base_lin + g_out;
   if (!finite3(lin)) lin = max(centre_px.rgb, vec3(0.0));
   if (!finite3(centre_px.rgb)) lin = centre_px.rgb;
-  out_color = vec4(lin, centre_px.a);
-  out_history = vec4(base_lin, mc.z);
+  vec3 history_rgb = base_lin;
 #else
+  vec3 history_rgb = lin;
+#endif
   out_color = vec4(lin, centre_px.a);
-  out_history = vec4(lin, mc.z);
+#if TAA_DISOCCLUSION
+  out_history = vec4(history_rgb, near.z);
+#else
+  out_history = vec4(history_rgb, mc.z);
 #endif
 #if TAA_EXTRA
 #if TAA_GLINT_LAYER

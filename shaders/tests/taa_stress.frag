@@ -13,6 +13,11 @@
 //                     distances now and last frame are both w (a disocclusion everywhere in a
 //                     frame whose w differs from the last frame's, none otherwise);
 //                     z <= 0.5: the true motion of the surface (common/motion.glsl)
+//   env_sh[1], [2]    a moving square over a background, when env_sh[1].w > 0.5 (it overrides env_sh[0]):
+//                     the pixels x, y with env_sh[1].xy <= (x, y) < env_sh[1].xy + env_sh[1].z are the
+//                     square, moving env_sh[2].xy pixels a frame at distance env_sh[2].z; the others a
+//                     still background at distance env_sh[2].w (tests/experiments/taa.cpp counts the
+//                     pixels whose history restarts against the square's positions)
 // With SURFACE_GLINT the glint layer (passes/sand.frag's layout) is the bright pixels of pattern 2
 // (share 1) and 0 elsewhere: the sparse glints the glint-aware options act on.
 #include "common/frame.glsl"
@@ -42,6 +47,11 @@ void main() {
 #if SURFACE_MOTION
   vec4 m = surface_motion(v_pix, v_prev_pix, v_eye_offset, v_prev_eye_offset);
   if (env_sh[0].z > 0.5) m = vec4(env_sh[0].xy, env_sh[0].w, env_sh[0].w);
+  if (env_sh[1].w > 0.5) {
+    vec2 o = vec2(px) - env_sh[1].xy;
+    bool square = all(greaterThanEqual(o, vec2(0.0))) && all(lessThan(o, vec2(env_sh[1].z)));
+    m = square ? vec4(env_sh[2].xy, env_sh[2].z, env_sh[2].z) : vec4(0.0, 0.0, env_sh[2].w, env_sh[2].w);
+  }
   out_motion = m;
 #endif
 #if SURFACE_GLINT

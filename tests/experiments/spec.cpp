@@ -217,6 +217,22 @@ TEST(ExperimentSpec, GlintAwareTaaKeysAreCheckedBeforeAnyWork) {
   EXPECT_FALSE(glintlab::core::TaaSettings{}.reads_glints() || glintlab::core::TaaSettings{}.keeps_extra()) << "off by default";
 }
 
+// Falcor's TAA has no depth test, so neither has a "taa" object with no key set; its tolerance
+// means nothing without it.
+TEST(ExperimentSpec, TheDisocclusionTestIsOffByDefaultAndItsToleranceNeedsIt) {
+  json j = minimal();
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {}}])");
+  EXPECT_FALSE(ExperimentSpec::from_json(j, kFile).variants[0].taa.disocclusion);
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"disocclusion_tolerance": 0.1}}])");
+  expect_rejected(j, {"variants[0].taa.disocclusion_tolerance", "\"disocclusion\": true"});
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"disocclusion": true, "disocclusion_tolerance": 0}}])");
+  expect_rejected(j, {"variants[0].taa.disocclusion_tolerance", "out of range"});
+  j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"disocclusion": true, "disocclusion_tolerance": 0.1}}])");
+  const glintlab::core::TaaSettings t = ExperimentSpec::from_json(j, kFile).variants[0].taa;
+  EXPECT_TRUE(t.disocclusion);
+  EXPECT_DOUBLE_EQ(t.disocclusion_tolerance, 0.1);
+}
+
 TEST(ExperimentSpec, RejectsUnknownDebugOutput) {
   json j = minimal();
   j["variants"][0]["debug"] = "normals";

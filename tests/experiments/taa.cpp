@@ -101,7 +101,8 @@ TEST(Taa, EveryOptionRunsAndAppearsInFramesCsv) {
       {"accumulate", {true}},
       {"reactive", {0.5}},
       {"glint_layer", {true}},
-      {"glint_lock", {true}}};
+      {"glint_lock", {true}},
+      {"disocclusion", {true}}};
   for (const auto& [key, values] : options)
     for (const auto& v : values) {
       std::string name = "taa-" + key + "-" + (v.is_string() ? v.get<std::string>() : v.dump());
@@ -247,6 +248,7 @@ TEST(Taa, QuadsSharingTheirFetchesGiveTheBitsOfFetchingEveryTexel) {
     core::TaaSettings longest, closest, centre;
     longest.dering = true;
     longest.anti_flicker = true;
+    longest.disocclusion = true;  // the nearest distance of the 3x3 and its slopes from shared texels too
     closest.velocity = core::TaaVelocity::ClosestDepth;
     closest.clamp = core::TaaClamp::MinMax;
     centre.velocity = core::TaaVelocity::Center;
@@ -344,6 +346,7 @@ TEST(Taa, GlintAwareOptionsWithAnEmptyGlintLayerGiveThePlainResolvesBits) {
   for (core::TaaHistoryFilter filter : {core::TaaHistoryFilter::CatmullRom, core::TaaHistoryFilter::Bilinear}) {
     core::TaaSettings base;
     base.dering = true;
+    base.disocclusion = true;
     base.history_filter = filter;
     core::TaaSettings lay = base, rea = base;
     lay.glint_layer = true;
