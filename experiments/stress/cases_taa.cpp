@@ -157,8 +157,9 @@ double model_pixel(const Image& cur, const Image* prev, const Image& motion, con
   };
   auto at = [&](int i, int j) { return tap(*prev, i, j, c); };
   // disocclusion (passes/taa.frag, same_surface; the stress frames have no jitter): the nearest
-  // surface of the 3x3 now, and the nearest of the 3x3 last frame (what the history keeps) at the
-  // texel under that surface's reprojected position, within tol plus a pixel of the local slope
+  // surface of the 3x3 now; last frame's nearest of each 3x3 (what the history keeps) at the bilinear
+  // taps of weight > 0 around that surface's reprojected position; its previous distance within their
+  // range widened by tol (a tap of sky leaves the range open above; no surface now needs a tap of sky)
   auto nearest = [&](const Image& m, int cx, int cy) {  // {x, y} of the nearest surface, or {-1, -1}
     int bx = -1, by = -1;
     double best = 0;
@@ -171,28 +172,28 @@ double model_pixel(const Image& cur, const Image* prev, const Image& motion, con
     return std::pair{bx, by};
   };
   const auto [nx, ny] = nearest(motion, x, y);
-  auto slope = [&](int dx, int dy) {  // axis_slope along (dx, dy)
-    const double zm = std::max(0.0, tap(motion, x - dx, y - dy, 2)), z0 = std::max(0.0, double(motion.at(x, y, 2))),
-                 zp = std::max(0.0, tap(motion, x + dx, y + dy, 2));
-    const bool l = zm > 0 && z0 > 0, r = zp > 0 && z0 > 0;
-    const double a = l ? std::fabs(z0 - zm) : 0, b = r ? std::fabs(zp - z0) : 0;
-    if (!(l && r)) return a + b;
-    const bool bending = (z0 - zm) * (zp - z0) > 0 && std::max(a, b) <= 4 * std::min(a, b);
-    return bending ? std::max(a, b) : std::min(a, b);
-  };
   const float ux = float(x) + 0.5f - (nx < 0 ? 0.0f : motion.at(nx, ny, 0)),
               uy = float(y) + 0.5f - (nx < 0 ? 0.0f : motion.at(nx, ny, 1));
   bool valid = ux >= -1.0f && uy >= -1.0f && ux <= float(W) + 1 && uy <= float(H) + 1;
   if (valid) {
-    const int tx = int(std::min(std::max(ux, 0.0f), float(W) - 0.5f)),
-              ty = int(std::min(std::max(uy, 0.0f), float(H) - 0.5f));
-    const auto [hx, hy] = nearest(*prev_motion, tx, ty);
-    const double held = hx < 0 ? 0.0 : double(prev_motion->at(hx, hy, 2));
+    const float cx = std::min(std::max(ux, 0.5f), float(W) - 0.5f) - 0.5f,
+                cy = std::min(std::max(uy, 0.5f), float(H) - 0.5f) - 0.5f;
+    const int tx = int(std::floor(cx)), ty = int(std::floor(cy));
+    const bool fx_pos = cx - std::floor(cx) > 0.0f, fy_pos = cy - std::floor(cy) > 0.0f;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    bool sky = false;
+    for (int j = 0; j <= int(fy_pos); ++j)
+      for (int i = 0; i <= int(fx_pos); ++i) {
+        const auto [hx, hy] = nearest(*prev_motion, std::min(tx + i, W - 1), std::min(ty + j, H - 1));
+        const double held = hx < 0 ? 0.0 : double(prev_motion->at(hx, hy, 2));
+        if (held > 0) lo = std::min(lo, held), hi = std::max(hi, held);
+        else sky = true;
+      }
     if (nx < 0) {
-      valid = held <= 0;
+      valid = sky;
     } else {
       const double w = motion.at(nx, ny, 3);
-      valid = w > 0 && std::fabs(held - w) <= tol * w + slope(1, 0) + slope(0, 1);
+      valid = w > 0 && w >= lo - tol * w && (sky || w <= hi + tol * w);
     }
   }
   if (!valid) return current;
