@@ -156,6 +156,8 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
     throw VulkanError("surface pass: supersample must be in 1..256");
   if (opt_.supersample > 1 && (opt_.motion || opt_.color_format != VK_FORMAT_R32G32B32A32_SFLOAT))
     throw VulkanError("surface pass: supersample needs an RGBA32F colour target and no motion vectors");
+  if (opt_.halves && opt_.supersample < 2)
+    throw VulkanError("surface pass: halves need supersample >= 2 (the halves split each pixel's block)");
   if (opt_.motion && !ctx.independent_blend())
     throw VulkanError(ctx.info().name + " lacks the independentBlend feature that motion vectors beside accumulated "
                       "colour need");
@@ -227,9 +229,12 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
     std::vector<VkDescriptorSetLayoutBinding> db = {
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+    for (uint32_t b = 2; opt_.halves && b < 4; ++b)
+      db.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     resolve_set_layout_ = make_set_layout(ctx, db);
     resolve_layout_ = make_pipeline_layout(ctx, resolve_set_layout_.get(), 16, VK_SHADER_STAGE_COMPUTE_BIT);
-    CompiledShader cs = sc.compile("passes/downsample.comp", ShaderStage::Compute);
+    CompiledShader cs = sc.compile("passes/downsample.comp", ShaderStage::Compute,
+                                   {std::string("HALVES=") + (opt_.halves ? "1" : "0")});
     ShaderModule m = make_shader_module(ctx, cs.spirv);
     resolve_pipeline_ = make_compute_pipeline(ctx, resolve_layout_.get(), m.get());
     resolve_set_ = make_descriptor_set(ctx, resolve_set_layout_.get(), db);
@@ -263,6 +268,7 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
 void SurfacePass::declare(PassIO& io) const {
   if (opt_.supersample > 1 || sum_opaque_) {  // the resolve writes the colour target; the rest is the pass's own
     io.write(opt_.color_target, opt_.color_format, sum_opaque_ ? TargetUse::ColorAttachment : TargetUse::Storage);
+    for (int h = 0; opt_.halves && h < 2; ++h) io.write(opt_.half_targets[h], opt_.color_format, TargetUse::Storage);
     return;
   }
   // The pass clears colour and motion itself, so their old contents are dropped.
@@ -298,15 +304,19 @@ void SurfacePass::setup(const TargetSet& t) {
       VkFramebuffer afb;
       vk_check(vkCreateFramebuffer(ctx_.device(), &ai, nullptr, &afb), "vkCreateFramebuffer");
       add_framebuffer_ = Framebuffer(ctx_.device(), afb);
-    } else {  // the box filter writes the colour target as a storage image
-      VkDescriptorImageInfo ii{VK_NULL_HANDLE, t.image(opt_.color_target).view(), VK_IMAGE_LAYOUT_GENERAL};
-      VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-      w.dstSet = resolve_set_.set;
-      w.dstBinding = 1;
-      w.descriptorCount = 1;
-      w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-      w.pImageInfo = &ii;
-      vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+    } else {  // the box filter writes the colour target (and the halves) as storage images
+      std::vector<std::string> outputs = {opt_.color_target};
+      if (opt_.halves) outputs.insert(outputs.end(), {opt_.half_targets[0], opt_.half_targets[1]});
+      for (size_t b = 0; b < outputs.size(); ++b) {
+        VkDescriptorImageInfo ii{VK_NULL_HANDLE, t.image(outputs[b]).view(), VK_IMAGE_LAYOUT_GENERAL};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = resolve_set_.set;
+        w.dstBinding = uint32_t(1 + b);
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        w.pImageInfo = &ii;
+        vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+      }
     }
   } else {
     views.push_back(t.image(opt_.color_target).view());
@@ -482,6 +492,7 @@ SurfaceRenderer::SurfaceRenderer(const VkContext& ctx, const SceneGpu& scene, in
   std::vector<std::string> readback = {options.color_target};
   if (options.motion) readback.push_back(options.motion_target);
   if (options.glint) readback.push_back(options.glint_target);
+  if (options.halves) readback.insert(readback.end(), {options.half_targets[0], options.half_targets[1]});
   pass_ = static_cast<SurfacePass*>(&graph_.add(std::make_unique<SurfacePass>(ctx, scene, std::move(options))));
   graph_.build(readback);
 }

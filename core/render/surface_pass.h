@@ -55,6 +55,12 @@ struct SurfacePassOptions {
   // pass serves f^2 samples per pixel; samples' jitters then lie within one
   // high-resolution pixel). RGBA32F colour, no motion, no "depth" target.
   int supersample = 1;
+  // With supersample >= 2: also write the means of each block's two checkerboard halves into
+  // half_targets (RGBA32F; passes/downsample.comp): two independent estimates at half the samples,
+  // whose difference measures the noise of the colour target's own estimate. The colour target is
+  // the same bits with or without them.
+  bool halves = false;
+  std::string half_targets[2] = {"color.a", "color.b"};
   // One sample per frame (no AA, TAA, motion): no depth pre-pass; the shading
   // draw tests LESS and writes depth and colour unblended, so the nearest
   // surface's colour is what remains (a farther fragment drawn first is

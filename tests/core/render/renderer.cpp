@@ -291,6 +291,44 @@ TEST(Renderer, SupersampledPassEqualsOnePassPerSample) {
   EXPECT_LT(differing, covered / 50) << differing << " of " << covered << " covered pixels differ";
 }
 
+// The supersampled pass's checkerboard halves (option `halves`: the means of each pixel's f x f
+// block's cells with i + j even and odd) on glinting sand, where samples differ: the colour target is
+// the same bits as the pass without halves; (n_a A + n_b B) / f^2 is that mean within fp32 summation
+// order (stated bound 1e-6 relative + 1e-7; the block's sum in another order); the halves differ
+// wherever the block's samples do (they are two estimates, not one copied); and with an odd f the
+// halves hold ceil and floor of f^2 / 2 cells. The option needs supersample >= 2.
+TEST(Renderer, SupersampledHalvesAreTwoEstimatesWhoseMeanIsTheTarget) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const int w = 64, h = 40;
+  const LayeredSphere s(ctx, 96, 0.3f, 0.0f, w, h);
+  const core::FrameUniforms uniforms = uniforms_for(s.vp, w, h, s.cam.position);
+  for (int f : {4, 3}) {
+    core::SurfacePassOptions plain = surface_options("tests/analytic.frag");
+    plain.supersample = f;
+    core::SurfacePassOptions split = plain;
+    split.halves = true;
+    const std::vector<core::SamplePush> one = {core::SamplePush{s.vp, {0.0f, 0.0f, 1.0f, 0.0f}}};
+    core::SurfaceRenderer a_pass(ctx, s.scene, w, h, plain), b_pass(ctx, s.scene, w, h, split);
+    const core::FrameResult ra = a_pass.render(uniforms, one), rb = b_pass.render(uniforms, one);
+    const Image &full = color(ra), &same = color(rb), &half_a = rb.images.at("color.a"), &half_b = rb.images.at("color.b");
+    const double na = (f * f + 1) / 2, nb = (f * f) / 2;
+    size_t differ_bits = 0, outside = 0, halves_differ = 0;
+    for (size_t i = 0; i < full.data.size(); ++i) {
+      differ_bits += std::memcmp(&full.data[i], &same.data[i], sizeof(float)) != 0;
+      const double mean = (na * half_a.data[i] + nb * half_b.data[i]) / double(f * f);
+      outside += std::abs(mean - full.data[i]) > 1e-6 * std::abs(full.data[i]) + 1e-7;
+      halves_differ += half_a.data[i] != half_b.data[i];
+    }
+    EXPECT_EQ(differ_bits, 0u) << "f = " << f;
+    EXPECT_EQ(outside, 0u) << "f = " << f;
+    EXPECT_GT(halves_differ, full.data.size() / 20) << "f = " << f;
+  }
+  core::SurfacePassOptions bad = surface_options("tests/analytic.frag");
+  bad.halves = true;
+  EXPECT_THROW(core::SurfacePass(ctx, s.scene, bad), core::VulkanError);
+}
+
 TEST(Renderer, OneOpaqueSampleWithSkyRewritesEveryPixelWithoutAClear) {
   // With one opaque sample and the sky on, the pass skips clearing colour and
   // motion: every pixel must be written by the nearest surface or the sky. A
