@@ -14,6 +14,7 @@
 namespace glintlab {
 
 namespace {
+const char* const kHalfTargets[2] = {"color.a", "color.b"};  // core::SurfacePassOptions::half_targets
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 }  // namespace
@@ -29,6 +30,7 @@ struct FrameLoop::Impl {
   RenderSetup motion;
   std::unique_ptr<metrics::FrameMetrics> measure;
   std::vector<metrics::FlickerTracker> trackers;
+  std::vector<metrics::FlickerTracker> half_trackers;  // per reference: its half B along the motion against half A
 
   Impl(const core::VkContext& c, const core::SceneGpu& scene, const RunPlan& p, const SceneData& d,
        const metrics::ColorManager& cm, const ReferenceCache& rc, std::ostream& l)
@@ -45,6 +47,7 @@ struct FrameLoop::Impl {
                                                        spec.reference.grid));
       measure = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
       trackers.resize(plan.variants.size());
+      half_trackers.resize(plan.references.size());
     }
   }
 };
@@ -115,8 +118,17 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         continue;
       }
       const std::string key = m.plan.reference_key(int(r), in.uniforms);
+      const RenderSetup& setup = m.references[r];
+      // The truth and, where it has them, its two halves: cached as three entries, rendered again
+      // unless all three load.
+      const std::string half_keys[2] = {key + "-half-a", key + "-half-b"};
+      std::optional<Image> halves[2];
       bool corrupt = false;
       img = m.cache.load(key, &corrupt);
+      for (int hh = 0; setup.halves && img && hh < 2; ++hh) {
+        halves[hh] = m.cache.load(half_keys[hh], &corrupt);
+        if (!halves[hh]) img.reset();
+      }
       if (corrupt) {
         m.log << "warning: corrupt reference cache entry " << m.cache.path_of(key) << " removed; re-rendering\n";
         rec.rebuilt = true;
@@ -126,11 +138,21 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       } else {
         in.samples = core::samples_for(spec.path, k, w, h, supersampling(spec.reference.grid, w, h, kReferencePatternSeed).offsets);
         auto t0 = Clock::now();
-        core::FrameResult fr = m.references[r].graph->execute(in);
+        core::FrameResult fr = setup.graph->execute(in);
         rec.wall_ms = ms_since(t0);
         rec.gpu_ms = fr.gpu_ms;
-        img = std::move(fr.images.at(m.references[r].output));
+        img = std::move(fr.images.at(setup.output));
         m.cache.store(key, *img);
+        for (int hh = 0; setup.halves && hh < 2; ++hh) {
+          halves[hh] = std::move(fr.images.at(kHalfTargets[hh]));
+          m.cache.store(half_keys[hh], *halves[hh]);
+        }
+      }
+      // The noise floor: every metric of half B against half A, along the same motion.
+      if (setup.halves) {
+        if (k == 0 || cam.cut || !work.reference[r][kk - 1]) m.half_trackers[r].reset();
+        rec.halves_metrics = m.measure->measure(*halves[1], m.measure->prepare(*halves[0], false), motion,
+                                                m.half_trackers[r]);
       }
       rec.image = &*img;
       ref_cached[r] = rec.cached;

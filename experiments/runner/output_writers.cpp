@@ -20,6 +20,19 @@ namespace {
 
 nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
+// The noise floor of a metric whose value is a mean of differences between test and truth (per-pixel
+// errors, the temporal errors, flicker excess and lag, pooled errors): the truth's halves A and B,
+// each of half its samples, differ by sqrt(2) x sqrt(2) = 2 times the noise of the whole truth, so
+// the whole truth's floor is half their metric. Ratios, densities and counts have no floor here.
+bool is_difference_metric(const std::string& name) {
+  static const char* const kNames[] = {"deltaE2000", "deltaEITP", "flip", "temporal_error", "temporal_error_mc",
+                                       "flicker_excess", "temporal_lag", "flicker_excess_fixed", "pooled_error",
+                                       "glint_hist_emd_oct"};
+  for (const char* n : kNames)
+    if (name == n) return true;
+  return name.rfind("pooled_rms_", 0) == 0;
+}
+
 fs::path frame_path(const fs::path& dir, int frame, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
@@ -92,6 +105,8 @@ SummaryWriter::SummaryWriter(fs::path path, const RunPlan& plan, const FrameSche
 
 void SummaryWriter::reference(const ReferenceRecord& r) {
   ReferenceStats& s = references_.at(size_t(r.reference));
+  for (const auto& [name, v] : r.halves_metrics)  // a temporal metric is undefined at a sequence's start
+    if (!std::isnan(v)) s.halves[name].add(v);
   if (r.cached) {
     ++s.cached;
     return;
@@ -170,6 +185,15 @@ void SummaryWriter::finish() {
                     {"corrupt_entries_rebuilt", s.rebuilt},
                     {"gpu_ms", stats_json(s.gpu_ms)},
                     {"wall_ms", stats_json(s.wall_ms)}});
+    if (!s.halves.empty()) {
+      nlohmann::json halves, floor;
+      for (const auto& [name, st] : s.halves) {
+        halves[name] = stats_json(st);
+        if (is_difference_metric(name)) floor[name] = num(0.5 * st.mean());
+      }
+      refs.back()["halves"] = halves;
+      refs.back()["floor"] = floor;
+    }
   }
   j["references"] = refs;
   if (plan_.measure) {

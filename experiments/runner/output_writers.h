@@ -69,6 +69,7 @@ class SummaryWriter final : public RecordSink {
   struct ReferenceStats {
     metrics::Statistics gpu_ms, wall_ms;
     int rendered = 0, cached = 0, rebuilt = 0;
+    std::map<std::string, metrics::Statistics> halves;  // each metric of half B against half A
   };
   std::filesystem::path path_;
   const RunPlan& plan_;

@@ -77,8 +77,10 @@ nlohmann::json to_json(const FrameRecord& r) {
 }
 
 nlohmann::json to_json(const ReferenceRecord& r) {
-  return {{"type", "reference"}, {"reference", r.reference}, {"name", r.name},       {"frame", r.frame},
-          {"cached", r.cached},  {"rebuilt", r.rebuilt},     {"gpu_ms", number(r.gpu_ms)}, {"wall_ms", number(r.wall_ms)}};
+  nlohmann::json j = {{"type", "reference"}, {"reference", r.reference}, {"name", r.name},       {"frame", r.frame},
+                      {"cached", r.cached},  {"rebuilt", r.rebuilt},     {"gpu_ms", number(r.gpu_ms)}, {"wall_ms", number(r.wall_ms)}};
+  if (!r.halves_metrics.empty()) j["halves_metrics"] = values(r.halves_metrics);
+  return j;
 }
 
 FrameRecord frame_record_from_json(const nlohmann::json& j) {
@@ -114,6 +116,7 @@ ReferenceRecord reference_record_from_json(const nlohmann::json& j) {
   r.rebuilt = j.at("rebuilt").get<bool>();
   r.gpu_ms = number(j.at("gpu_ms"));
   r.wall_ms = number(j.at("wall_ms"));
+  if (j.contains("halves_metrics")) r.halves_metrics = values(j.at("halves_metrics"));
   return r;
 }
 

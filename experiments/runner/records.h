@@ -23,6 +23,9 @@ struct ReferenceRecord {
   bool cached = false;           // loaded from the cache (not rendered)
   bool rebuilt = false;          // the cache entry was corrupt and was rendered again
   double gpu_ms = 0, wall_ms = 0;  // rendered frames only
+  // The truth's noise at half its samples: every metric of its half B against its half A (empty where
+  // the truth has no halves: read from files, or rendered at factor 1).
+  metrics::NamedValues halves_metrics;
 };
 
 struct FrameRecord {

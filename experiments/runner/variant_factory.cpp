@@ -59,9 +59,13 @@ RenderSetup build_reference(const core::VkContext& ctx, const core::SceneGpu& sc
   o.name = "reference";
   o.program = program;
   o.supersample = supersampling(grid, width, height, kReferencePatternSeed).factor;
+  o.halves = o.supersample >= 2;  // the split-half truth: the noise floor of every metric
   r.output = "color";
   r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
-  r.graph->build({r.output});
+  std::vector<std::string> readback = {r.output};
+  if (o.halves) readback.insert(readback.end(), {o.half_targets[0], o.half_targets[1]});
+  r.halves = o.halves;
+  r.graph->build(readback);
   return r;
 }
 

@@ -34,6 +34,7 @@ constexpr uint32_t kSsaaPatternSeed = 17u;
 struct RenderSetup {
   std::unique_ptr<core::FrameGraph> graph;
   std::string output;  // the target that is the image ("color", "taa.color", "motion")
+  bool halves = false;  // a reference that also reads back its two halves ("color.a", "color.b")
 };
 
 // The graph of a variant whose material program is `program`.
@@ -57,6 +58,9 @@ struct Supersampling {
 Supersampling supersampling(int grid, int width, int height, uint32_t seed);
 
 // The reference: `program` with the sampling above.
+// Where the factor is at least 2 the graph also reads back the truth's two halves (the checkerboard
+// halves of each pixel's factor x factor cells: core/render/surface_pass.h `halves`), from which the
+// frame loop measures every metric's noise floor.
 RenderSetup build_reference(const core::VkContext& ctx, const core::SceneGpu& scene, int width, int height,
                             const core::MaterialProgram& program, int grid);
 // Exact motion vectors and distances of the unjittered geometry (and sky).
