@@ -642,8 +642,25 @@ class Report:
         self.markers = {v["name"]: AA_MARKERS.get(v.get("aa"), "D") for v in self.variants}
         self.units = self.summary.get("units") or {}
         self.measured = bool(self.summary.get("measured", True)) and any(v.get("metrics") for v in self.variants)
-        self.glance = []  # (metric, best point, front) for "at a glance"
+        self.glance = []  # (metric, best point, front, variants within the floor of the best) for "at a glance"
         self.sections = []  # (id, title) of the sections written, for the navigation
+
+    def floor_of(self, variant_name, metric):
+        """The noise floor of `metric` of the truth `variant_name` is measured against (summary.json
+        references[].floor), or None."""
+        v = next((x for x in self.variants if x["name"] == variant_name), None)
+        r = next((r for r in self.summary.get("references") or [] if v and r.get("name") == v.get("reference")), None)
+        f = (r or {}).get("floor", {}).get(metric)
+        return f if isinstance(f, (int, float)) and math.isfinite(f) else None
+
+    def within_floor(self, pts, best, metric):
+        """The variants whose figure lies within the truth's noise floor of the best one's (same truth)."""
+        f = self.floor_of(best[2], metric)
+        if f is None or metric in RATIO_METRICS:
+            return []
+        ref = next(x for x in self.variants if x["name"] == best[2]).get("reference")
+        return [p[2] for p in pts if p[2] != best[2] and abs(p[3] - best[3]) < f
+                and next(x for x in self.variants if x["name"] == p[2]).get("reference") == ref]
 
     def metric_stat(self, v, metric, key="mean"):
         return stat((v.get("metrics") or {}).get(metric), key)
@@ -677,10 +694,15 @@ class Report:
         for r in [r for r in s.get("references") or [] if not r.get("frames")]:
             g = stat(r.get("gpu_ms"))
             cost = f", {fmt(g)} GPU ms/frame" if g is not None else ""
+            floor = r.get("floor") or {}
+            shown = [m for m in ("deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag")
+                     if isinstance(floor.get(m), (int, float))]
+            floor_text = ("; its noise floor (half its halves' difference): " + ", ".join(
+                f"{esc(label_of(m))} {fmt(floor[m])}" for m in shown)) if shown else ""
             facts.append((f"reference “{esc(r.get('name'))}”",
                           f"{esc(r.get('spp'))} samples per pixel (stratified, box filter){cost}; "
                           f"{esc(r.get('frames_rendered', 0))} frames rendered, "
-                          f"{esc(r.get('frames_cached', 0))} from the cache"))
+                          f"{esc(r.get('frames_cached', 0))} from the cache" + floor_text))
         if s.get("command") == "measure":  # frames read from files (`glintlab measure`)
             me = s.get("motion_explained") or {}
             explained = ""
@@ -716,7 +738,7 @@ class Report:
                          "the report shows timings and images only. <code>glintlab run</code> measures every frame "
                          "against the reference.</p>")
         glance = []
-        for metric, best, front in self.glance:
+        for metric, best, front, tied in self.glance:
             cheapest = front[0] if front else None
             extra = ""
             if metric == "temporal_error_mc":
@@ -725,6 +747,9 @@ class Report:
                          f"{fmt(self.metric_stat(bv, 'temporal_lag'))}")
             g = (f"<li><b>{esc(label_of(metric))}</b>: {esc(best[2])} is best ({fmt(best[3])}"
                  f"{' ratio' if metric == 'flicker_ratio' else ''}{extra}, {fmt(best[0])} ms/frame)")
+            if tied:
+                g += (f"; within the truth's noise floor ({fmt(self.floor_of(best[2], metric))}) of it, so as good "
+                      f"as far as this truth can tell: {esc(', '.join(tied))}")
             if cheapest and cheapest[2] != best[2]:
                 g += (f"; the cheapest Pareto-optimal variant is {esc(cheapest[2])} ({fmt(cheapest[3])} at "
                       f"{fmt(cheapest[0])} ms/frame)")
@@ -784,7 +809,7 @@ class Report:
             items.append(f"<li><b>{esc(label_of(metric))}</b>: best {esc(best[2])} at {val}, "
                          f"{fmt(best[0])} GPU ms/frame. Pareto-optimal, cheapest first: "
                          + ", ".join(f"{esc(p[2])} ({fmt(by[p[2]][3])} at {fmt(p[0])} ms)" for p in front) + ".</li>")
-            self.glance.append((metric, best, [by[p[2]] for p in front]))
+            self.glance.append((metric, best, [by[p[2]] for p in front], self.within_floor(pts, best, metric)))
         return (head
                 + "<p>Each point is one variant: x is its mean GPU time per frame (all passes, GPU timestamps), y its "
                 "mean error against the reference over all frames. A variant is <i>Pareto-optimal</i> (ringed, joined "

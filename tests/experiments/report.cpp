@@ -199,6 +199,13 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
     if (v["metrics"].contains("glint_density_ref") && v["metrics"]["glint_density_ref"]["mean"].get<double>() > 0)
       truth_has_glints = true;
   ASSERT_TRUE(truth_has_glints) << "the test's run should show glints";
+  // The truth's noise floor beside its facts, with the value summary.json holds.
+  const auto& floor = summary["references"][0]["floor"];
+  ASSERT_TRUE(floor.contains("deltaE2000")) << summary["references"][0].dump();
+  EXPECT_NE(report.find("its noise floor"), std::string::npos);
+  char floor_text[32];
+  std::snprintf(floor_text, sizeof floor_text, "ΔE00 %.3g", floor["deltaE2000"].get<double>());
+  EXPECT_NE(report.find(floor_text), std::string::npos) << floor_text;
   EXPECT_NE(report.find("glint density ratio"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "figures" / "pareto_glint_density_ratio.svg"));
   // Plots also as SVG and PDF beside the report.
