@@ -291,4 +291,35 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
   return true;
 }
 
+std::string exr_chunk_problem(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "";
+  const std::uint64_t file_size = std::uint64_t(st.st_size);
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = quiet;
+  Context ctx;
+  int parts = 0;
+  if (exr_start_read(&ctx.c, path.c_str(), &init) != EXR_ERR_SUCCESS || exr_get_count(ctx.c, &parts) != EXR_ERR_SUCCESS)
+    return "";
+  for (int p = 0; p < parts; ++p) {
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    int32_t lines = 0;
+    if (exr_get_storage(ctx.c, p, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE) continue;
+    if (exr_get_data_window(ctx.c, p, &dw) != EXR_ERR_SUCCESS ||
+        exr_get_scanlines_per_chunk(ctx.c, p, &lines) != EXR_ERR_SUCCESS || lines <= 0)
+      return "part " + std::to_string(p) + " has no readable data window";
+    for (std::int64_t y = dw.min.y; y <= dw.max.y; y += lines) {
+      exr_chunk_info_t ci;
+      const std::string chunk = "the chunk of line " + std::to_string(y) + " of part " + std::to_string(p);
+      if (exr_read_scanline_chunk_info(ctx.c, p, int(y), &ci) != EXR_ERR_SUCCESS)
+        return chunk + " cannot be found (the file is " + std::to_string(file_size) + " bytes)";
+      if (ci.packed_size > file_size || ci.data_offset > file_size - ci.packed_size)
+        return chunk + " ends at byte " + std::to_string(ci.data_offset + ci.packed_size) + ", past the end of the file (" +
+               std::to_string(file_size) + " bytes)";
+    }
+  }
+  return "";
+}
+
 }  // namespace glintlab
