@@ -158,14 +158,16 @@ TEST_F(Tune, WorkersUnderGnuParallelShareOneStudyAndStopAtExactlyN) {
   const fs::path study = root() / "p";
   // The reference once, so both workers start on the same footing.
   ASSERT_EQ(sh(tune_cmd(root(), root() / "warm", 1)).code, 0);
-  const Result r = sh("parallel --will-cite -N0 -j 3 --halt now,fail=1 " + tune_cmd(root(), study, 5) + " ::: 1 2 3");
+  const Result r = sh("parallel --will-cite -N0 -j 4 --halt now,fail=1 " + tune_cmd(root(), study, 6) + " ::: 1 2 3 4");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto rows = read_csv(study / "trials.csv");
-  EXPECT_EQ(count_state(rows, "COMPLETE"), 5u);
-  std::set<std::string> numbers, workers;
+  EXPECT_EQ(count_state(rows, "COMPLETE"), 6u);
+  std::set<std::string> numbers, workers, settings;
   for (const Row& row : rows) {
     EXPECT_TRUE(numbers.insert(row.at("trial")).second) << "trial " << row.at("trial") << " twice";
     if (row.at("state") == "COMPLETE") {
+      EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
+          << "trial " << row.at("trial") << " repeats another's settings";
       workers.insert(row.at("worker"));
       EXPECT_TRUE(fs::exists(study / "trials" / (std::string(4 - row.at("trial").size(), '0') + row.at("trial")) / "run" /
                              "summary.json"));
@@ -369,5 +371,10 @@ TEST_F(Tune, SlurmJobArraysRunShardsWithAMergeAndTuneWorkers) {
   ASSERT_EQ(t.code, 0) << t.output << sh("cat " + q(root() / "tune-1.log")).output;
   const auto trials = read_csv(root() / "study" / "trials.csv");
   EXPECT_EQ(count_state(trials, "COMPLETE"), 4u);
+  std::set<std::string> settings;  // the two tasks' workers sample with seeds of their own
+  for (const Row& row : trials)
+    if (row.at("state") == "COMPLETE")
+      EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
+          << "trial " << row.at("trial") << " repeats another's settings";
   EXPECT_TRUE(fs::exists(root() / "study" / "study.journal"));
 }
