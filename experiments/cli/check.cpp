@@ -56,7 +56,7 @@ void validate_summary(const nlohmann::json& j, const std::string& file, bool bas
   if (!j.is_object()) bad(file, "not a glintlab summary.json (not a JSON object)");
   const auto schema = j.find("schema");
   if (schema == j.end() || !schema->is_string() || *schema != kSummarySchema)
-    bad(file, "\"schema\" is " + (schema == j.end() ? std::string("missing") : schema->dump()) + "; allowed: \"" +
+    bad(file, "\"schema\" is " + (schema == j.end() ? std::string("missing") : dump_json(*schema)) + "; allowed: \"" +
                   kSummarySchema + "\" (a summary.json of `run` or `measure`)");
   const auto experiment = j.find("experiment");
   if (experiment == j.end() || !experiment->is_string())

@@ -187,6 +187,9 @@ TEST(Check, SchemaAndExperimentMustMatch) {
   json tune = summary();
   tune["schema"] = "glintlab-tune/1";
   expect_refused(check_files(tune, summary()), {"summary.json", "\"schema\"", "glintlab-summary/1"});
+  json bytes = summary();  // not UTF-8 (only a caller's JSON can hold that): refused, not a JSON error
+  bytes["schema"] = std::string("\xff\xfe");
+  EXPECT_THROW(check_summary(bytes, summary(), default_check_tolerances()), std::invalid_argument);
   json anonymous = summary();
   anonymous.erase("experiment");
   expect_refused(check_files(anonymous, anonymous), {"summary.json", "\"experiment\""});
