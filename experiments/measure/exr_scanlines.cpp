@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <vector>
 #if defined(__x86_64__)
+#include <cpuid.h>
 #include <immintrin.h>
 #endif
 
@@ -77,6 +78,18 @@ void deinterleave(const std::uint8_t* in, std::uint8_t* out, size_t n) {
   if (i < n) out[i] = *a;
 }
 
+#if defined(__x86_64__)
+// Whether the CPU converts halves (F16C) and the OS saves the AVX registers it uses, from CPUID
+// (clang 14's __builtin_cpu_supports does not know "f16c").
+bool cpu_has_f16c() {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_F16C) || !(c & bit_OSXSAVE)) return false;
+  unsigned lo = 0, hi = 0;
+  __asm__("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+  return (lo & 6) == 6;  // XMM and YMM state
+}
+#endif
+
 // n halves (little-endian bits) to floats at dst[0], dst[stride], ...: with F16C where the CPU has it.
 #if defined(__x86_64__)
 __attribute__((target("f16c"))) void halves_to_floats_f16c(const std::uint8_t* src, float* dst, size_t stride,
@@ -92,7 +105,7 @@ __attribute__((target("f16c"))) void halves_to_floats_f16c(const std::uint8_t* s
 #endif
 void halves_to_floats(const std::uint8_t* src, float* dst, size_t stride, size_t n) {
 #if defined(__x86_64__)
-  static const bool f16c = __builtin_cpu_supports("f16c");
+  static const bool f16c = cpu_has_f16c();
   if (f16c) return halves_to_floats_f16c(src, dst, stride, n);
 #endif
   for (size_t x = 0; x < n; ++x) {
@@ -218,7 +231,7 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
     enum class Rgba { kNo, kFloat, kHalf } rgba = Rgba::kNo;
 #if defined(__x86_64__)
     {
-      static const bool f16c = __builtin_cpu_supports("f16c");
+      static const bool f16c = cpu_has_f16c();
       const auto& want = plan[size_t(p)];
       bool one_type = nc == 4 && want.size() >= 3;
       for (const Wanted& x : want) one_type = one_type && x.type == want[0].type;
