@@ -52,12 +52,9 @@ std::vector<std::string> FrameMetrics::names() const {
     n.push_back(m);
     n.push_back(m + "_max");
   }
-  for (const char* s : {"flicker_ratio", "temporal_error", "temporal_error_mc", "frame_diff_ratio",
-                        "flicker_contrast", "flicker_excess", "temporal_lag", "flicker_excess_fixed",
-                        "flicker_valid_px", "flicker_disoccluded_px"})
-    n.emplace_back(s);
-  if (options_.glints)
-    for (const char* s : {"glint_density_test", "glint_density_ref", "glint_hist_emd_oct"}) n.emplace_back(s);
+  for (const FrameStatistic& s : frame_statistics())
+    if (std::string(s.group) == "flicker" || (options_.glints && std::string(s.group) == "glints"))
+      n.emplace_back(s.name);
   if (options_.pooled) {
     for (int b : default_pool_block_sizes()) {
       n.push_back("pooled_bias_" + std::to_string(b));

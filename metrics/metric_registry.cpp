@@ -9,6 +9,7 @@
 #include "metrics/delta_e_itp.h"
 #include "metrics/error_metrics.h"
 #include "metrics/flip.h"
+#include "metrics/pooled_error.h"
 
 namespace glintlab::metrics {
 
@@ -31,7 +32,59 @@ void map_mean_max(const Image& m, double* mean, double* max) {
   *max = nan ? q : mx;
 }
 
-std::vector<std::string> metric_names() { return {"deltaE2000", "deltaEITP", "flip", "psnr", "relative"}; }
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr ValueRange kNonNegative{0.0, kInf, "a finite number >= 0"};
+constexpr ValueRange kUnit{0.0, 1.0, "a number in [0, 1]"};
+constexpr ValueRange kAnyFinite{-kInf, kInf, "a finite number"};
+
+struct PerPixelMetric {
+  const char* name;
+  ValueRange range;  // of the mean and the max over pixels
+};
+
+// One row per per-pixel metric (evaluate_metric computes each).
+const PerPixelMetric kPerPixel[] = {
+    {"deltaE2000", kNonNegative}, {"deltaEITP", kNonNegative}, {"flip", kUnit},
+    {"psnr", kAnyFinite},  // dB: below 0 when the error exceeds the peak
+    {"relative", kNonNegative},
+};
+
+}  // namespace
+
+std::vector<std::string> metric_names() {
+  std::vector<std::string> n;
+  for (const PerPixelMetric& m : kPerPixel) n.emplace_back(m.name);
+  return n;
+}
+
+const std::vector<FrameStatistic>& frame_statistics() {
+  static const std::vector<FrameStatistic> s = {
+      {"flicker_ratio", "flicker", kNonNegative},        {"temporal_error", "flicker", kNonNegative},
+      {"temporal_error_mc", "flicker", kNonNegative},    {"frame_diff_ratio", "flicker", kNonNegative},
+      {"flicker_contrast", "flicker", kNonNegative},     {"flicker_excess", "flicker", kNonNegative},
+      {"temporal_lag", "flicker", kNonNegative},         {"flicker_excess_fixed", "flicker", kNonNegative},
+      {"flicker_valid_px", "flicker", kNonNegative},     {"flicker_disoccluded_px", "flicker", kNonNegative},
+      {"glint_density_test", "glints", kNonNegative},    {"glint_density_ref", "glints", kNonNegative},
+      {"glint_hist_emd_oct", "glints", kNonNegative},    {"nonfinite_pixels", "pixels", kNonNegative},
+      {"negative_pixels", "pixels", kNonNegative},
+  };
+  return s;
+}
+
+std::optional<ValueRange> value_range(const std::string& name) {
+  for (const PerPixelMetric& m : kPerPixel)
+    if (name == m.name || name == std::string(m.name) + "_max") return m.range;
+  for (const FrameStatistic& s : frame_statistics())
+    if (name == s.name) return s.range;
+  if (name == "pooled_error") return kNonNegative;
+  for (int b : default_pool_block_sizes()) {
+    if (name == "pooled_rms_" + std::to_string(b)) return kNonNegative;
+    if (name == "pooled_bias_" + std::to_string(b)) return kAnyFinite;
+  }
+  return std::nullopt;
+}
 
 std::vector<std::string> metric_group_names() { return {"flicker", "glints", "pooled"}; }
 

@@ -10,6 +10,7 @@
 // mean and max propagate NaN (a NaN anywhere in the map makes them NaN).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,29 @@
 namespace glintlab::metrics {
 
 std::vector<std::string> metric_names();  // {"deltaE2000", "deltaEITP", "flip", "psnr", "relative"}
+
+// What a metric's value (a frame's, or a mean over frames) may be when it is a number: finite and in
+// [lo, hi]. `allowed` says it in words for messages ("a finite number >= 0").
+struct ValueRange {
+  double lo, hi;
+  const char* allowed;
+  bool contains(double x) const { return x >= lo && x <= hi; }  // false for NaN and +-inf
+};
+
+// A statistic of a frame beside the per-pixel metrics, with its range: FrameMetrics gives the groups
+// "flicker" and "glints"; "pixels" are the runner's counts of the test frame's bad pixels.
+struct FrameStatistic {
+  const char* name;
+  const char* group;
+  ValueRange range;
+};
+// In FrameMetrics::names() order. The group "pooled" (pooled_bias_<s>, any sign; pooled_rms_<s> and
+// pooled_error, >= 0; s in default_pool_block_sizes()) is named by block size, not listed here.
+const std::vector<FrameStatistic>& frame_statistics();
+
+// The range of a value as summary.json and records.jsonl name it: a per-pixel metric or its "_max",
+// a frame statistic, a pooled scale; nullopt for any other name.
+std::optional<ValueRange> value_range(const std::string& name);
 
 // The groups of frame statistics (FrameMetrics) that a metrics list may name beside the per-pixel
 // metrics: "flicker" (flicker along the motion), "glints" (glint statistics), "pooled" (pooled error).

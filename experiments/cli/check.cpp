@@ -3,12 +3,17 @@
 #include "core/util/json_check.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/runner/schema.h"
+#include "metrics/metric_registry.h"
 
+#include <charconv>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <set>
 
 namespace glintlab {
 
@@ -23,22 +28,66 @@ Sense sense_of(const std::string& m) {
   return Sense::Lower;
 }
 
-// The mean of metric m of a summary's variant entry; NaN when any level is missing or of another type
-// (a summary is input: nothing here may assume its shape).
-double mean_of(const nlohmann::json& v, const std::string& m) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (!v.is_object()) return nan;
-  const auto metrics = v.find("metrics");
-  if (metrics == v.end() || !metrics->is_object()) return nan;
-  const auto entry = metrics->find(m);
-  if (entry == metrics->end() || !entry->is_object()) return nan;
-  const auto mean = entry->find("mean");
-  return mean != entry->end() && mean->is_number() ? mean->get<double>() : nan;
+// A metric the gate can be asked to guard: declared (metrics/metric_registry.h) with a sense of worse;
+// pooled_bias_<s> is signed (no direction is worse), psnr is the one signed metric with one.
+bool gateable(const std::string& m) {
+  const auto range = metrics::value_range(m);
+  return range && (range->lo >= 0 || m == "psnr");
 }
 
-void require_summary(const nlohmann::json& j, const char* what) {
-  if (!j.is_object() || !j.contains("schema") || !j.contains("variants") || !j["variants"].is_array())
-    throw std::invalid_argument(std::string(what) + " is not a glintlab summary.json (no \"schema\"/\"variants\")");
+[[noreturn]] void bad(const std::string& file, const std::string& what) {
+  throw std::invalid_argument(file + ": " + what);
+}
+
+// The mean of metric m of a validated variant entry: absent (nullopt), null (NaN) or a number.
+std::optional<double> mean_of(const nlohmann::json& variant, const std::string& m) {
+  const auto& metrics = variant["metrics"];
+  const auto entry = metrics.find(m);
+  if (entry == metrics.end()) return std::nullopt;
+  const auto& mean = (*entry)["mean"];
+  return mean.is_null() ? std::numeric_limits<double>::quiet_NaN() : mean.get<double>();
+}
+
+// Throws std::invalid_argument naming `file` unless `j` is a glintlab summary whose every variant has a
+// unique name and whose every metric mean is null or a number in its declared range. In a baseline, a
+// metric that `tolerances` gates must have a finite mean where it is present: null cannot gate.
+void validate_summary(const nlohmann::json& j, const std::string& file, bool baseline,
+                      const std::map<std::string, double>& tolerances) {
+  if (!j.is_object()) bad(file, "not a glintlab summary.json (not a JSON object)");
+  const auto schema = j.find("schema");
+  if (schema == j.end() || !schema->is_string() || *schema != kSummarySchema)
+    bad(file, "\"schema\" is " + (schema == j.end() ? std::string("missing") : dump_json(*schema)) + "; allowed: \"" +
+                  kSummarySchema + "\" (a summary.json of `run` or `measure`)");
+  const auto experiment = j.find("experiment");
+  if (experiment == j.end() || !experiment->is_string())
+    bad(file, "\"experiment\" must be the experiment's name (a string)");
+  const auto variants = j.find("variants");
+  if (variants == j.end() || !variants->is_array()) bad(file, "\"variants\" must be an array of variants");
+  std::set<std::string> names;
+  for (const auto& v : *variants) {
+    if (!v.is_object() || !v.contains("name") || !v["name"].is_string() || v["name"].get<std::string>().empty())
+      bad(file, "every entry of \"variants\" must be an object with a non-empty string \"name\"");
+    const std::string name = v["name"];
+    if (!names.insert(name).second)
+      bad(file, "variant \"" + name + "\" is given twice; variant names must be unique");
+    if (!v.contains("metrics") || !v["metrics"].is_object())
+      bad(file, "variant \"" + name + "\": \"metrics\" must be an object of metric -> {\"mean\", ...}");
+    for (const auto& [metric, entry] : v["metrics"].items()) {
+      const std::string where = "variant \"" + name + "\", metric \"" + metric + "\": ";
+      const auto range = metrics::value_range(metric);
+      const std::string allowed = range ? range->allowed : "a number";
+      if (!entry.is_object() || !entry.contains("mean"))
+        bad(file, where + "must be an object with a \"mean\"");
+      const auto& mean = entry["mean"];
+      const bool gated = baseline && tolerances.count(metric);
+      if (mean.is_null() && gated)
+        bad(file, where + "\"mean\" is null (a NaN or infinite frame), so this baseline cannot gate " + metric +
+                      "; allowed: " + allowed + " (measure the baseline again)");
+      if (mean.is_null()) continue;
+      if (!mean.is_number() || !std::isfinite(mean.get<double>()) || (range && !range->contains(mean.get<double>())))
+        bad(file, where + "\"mean\" is " + dump_json(mean) + "; allowed: " + allowed + (gated ? "" : " or null"));
+    }
+  }
 }
 
 }  // namespace
@@ -52,33 +101,70 @@ const std::map<std::string, double>& default_check_tolerances() {
   return t;
 }
 
+std::map<std::string, double> parse_check_tolerances(const std::vector<std::string>& args) {
+  std::map<std::string, double> tol = default_check_tolerances();
+  std::set<std::string> given;
+  for (const auto& a : args) {
+    const auto eq = a.find('=');
+    const std::string metric = a.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : a.substr(eq + 1);
+    const std::string got = "--tolerance \"" + a + "\": ";
+    if (eq == std::string::npos || metric.empty())
+      throw std::invalid_argument(got + "expected metric=x (e.g. flicker_ratio=0.05)");
+    if (!gateable(metric)) {
+      std::string known;
+      for (const auto& [m, x] : default_check_tolerances()) known += (known.empty() ? "" : ", ") + m;
+      throw std::invalid_argument(got + "\"" + metric + "\" is not a metric the gate can guard (names are exact, " +
+                                  "case included); allowed: " + known +
+                                  ", or another metric of summary.json except pooled_bias_<s>");
+    }
+    double x = 0;
+    const char* end = value.data() + value.size();
+    const auto [ptr, ec] = std::from_chars(value.data(), end, x);
+    if (value.empty() || ec != std::errc() || ptr != end || !std::isfinite(x) || x < 0)
+      throw std::invalid_argument(got + "the tolerance \"" + value + "\" is not allowed; allowed: a finite " +
+                                  "decimal number >= 0 and nothing after it (e.g. " + metric + "=0.05)");
+    if (!given.insert(metric).second) throw std::invalid_argument(got + metric + " is given twice");
+    tol[metric] = x;
+  }
+  return tol;
+}
+
 std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohmann::json& baseline,
-                                    const std::map<std::string, double>& tolerances) {
-  require_summary(summary, "the summary");
-  require_summary(baseline, "the baseline");
-  if (summary.value("experiment", "") != baseline.value("experiment", ""))
-    throw std::invalid_argument("the summary is of experiment \"" + summary.value("experiment", "") +
-                                "\" but the baseline of \"" + baseline.value("experiment", "") + "\"");
+                                    const std::map<std::string, double>& tolerances, const std::string& summary_file,
+                                    const std::string& baseline_file) {
+  validate_summary(summary, summary_file, false, tolerances);
+  validate_summary(baseline, baseline_file, true, tolerances);
+  if (summary["experiment"] != baseline["experiment"])
+    throw std::invalid_argument(summary_file + " is of experiment " + dump_json(summary["experiment"]) + " but " +
+                                baseline_file + " of " + dump_json(baseline["experiment"]) +
+                                "; a summary is checked against the baseline of its own experiment");
   std::vector<CheckRow> rows;
   for (const auto& bv : baseline["variants"]) {
-    const std::string name = bv.value("name", "");
+    const std::string name = bv["name"];
     const nlohmann::json* sv = nullptr;
     for (const auto& v : summary["variants"])
-      if (v.value("name", "") == name) sv = &v;
+      if (v["name"] == name) sv = &v;
     for (const auto& [metric, tol] : tolerances) {
       CheckRow r;
       r.variant = name;
       r.metric = metric;
       r.tolerance = tol;
-      r.baseline = mean_of(bv, metric);
-      if (std::isnan(r.baseline)) continue;  // not in the baseline: nothing to guard
+      const std::optional<double> base = mean_of(bv, metric);
+      if (!base) {
+        r.skipped = true;
+        r.note = "not measured in the baseline";
+        rows.push_back(r);
+        continue;
+      }
+      r.baseline = *base;
       if (!sv) {
         r.regression = true;
         r.note = "variant missing from the summary";
         rows.push_back(r);
         continue;
       }
-      r.current = mean_of(*sv, metric);
+      r.current = mean_of(*sv, metric).value_or(std::numeric_limits<double>::quiet_NaN());
       if (std::isnan(r.current)) {
         r.regression = true;
         r.note = "missing or not finite in the summary";
@@ -110,44 +196,30 @@ std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohman
 
 int run_check(const std::string& summary_path, const std::string& baseline_path,
               const std::vector<std::string>& tolerance_args, std::ostream& out, std::ostream& err) {
-  std::map<std::string, double> tol = default_check_tolerances();
-  for (const auto& a : tolerance_args) {
-    const auto eq = a.find('=');
-    double x = std::numeric_limits<double>::quiet_NaN();
-    if (eq != std::string::npos) {
-      try {
-        x = std::stod(a.substr(eq + 1));
-      } catch (const std::exception&) {
-      }
-    }
-    if (eq == std::string::npos || eq == 0 || !(x >= 0.0) || !std::isfinite(x)) {
-      err << "error: --tolerance: expected metric=x with x >= 0 (e.g. flicker_ratio=0.05), got \"" << a << "\"\n";
-      return kExitBadInput;
-    }
-    tol[a.substr(0, eq)] = x;
-  }
-  nlohmann::json summary, baseline;
   std::vector<CheckRow> rows;
   try {
-    summary = read_json_file(summary_path);
-    baseline = read_json_file(baseline_path);
-    rows = check_summary(summary, baseline, tol);
+    const std::map<std::string, double> tol = parse_check_tolerances(tolerance_args);
+    const nlohmann::json summary = read_json_file(summary_path);
+    const nlohmann::json baseline = read_json_file(baseline_path);
+    rows = check_summary(summary, baseline, tol, summary_path, baseline_path);
   } catch (const ConfigError& e) {
     err << "error: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
-    err << "error: " << summary_path << " vs " << baseline_path << ": " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const nlohmann::json::exception& e) {  // a field of the wrong type
-    err << "error: " << summary_path << " vs " << baseline_path << ": not glintlab summaries of the schema "
-        << "glintlab-summary/1 (" << e.what() << ")\n";
+    err << "error: check: " << e.what() << "\n";
     return kExitBadInput;
   }
-  size_t regressions = 0;
+  size_t regressions = 0, checks = 0;
+  std::map<std::string, std::vector<std::string>> skipped;  // metric -> variants whose baseline lacks it
   out << std::left << std::setw(18) << "variant" << std::setw(20) << "metric" << std::right << std::setw(12)
       << "baseline" << std::setw(12) << "current" << std::setw(10) << "worse by" << std::setw(10) << "allowed"
       << "  status\n";
   for (const CheckRow& r : rows) {
+    if (r.skipped) {
+      skipped[r.metric].push_back(r.variant);
+      continue;
+    }
+    ++checks;
     regressions += r.regression;
     out << std::left << std::setw(18) << r.variant << std::setw(20) << r.metric << std::right << std::setprecision(5)
         << std::setw(12) << r.baseline << std::setw(12) << (r.note.empty() ? r.current : NAN) << std::setw(10)
@@ -155,7 +227,14 @@ int run_check(const std::string& summary_path, const std::string& baseline_path,
         << (r.regression ? "REGRESSION" : "ok") << (r.note.empty() ? "" : " (" + r.note + ")") << "\n";
   }
   out << (regressions ? std::to_string(regressions) + " regression(s)" : std::string("no regression")) << " in "
-      << rows.size() << " checks against " << baseline_path << "\n";
+      << checks << " checks against " << baseline_path;
+  if (skipped.empty()) out << "; none skipped";
+  for (const auto& [metric, variants] : skipped) {
+    out << "; skipped " << metric << " (not measured in the baseline for ";
+    for (size_t i = 0; i < variants.size(); ++i) out << (i ? ", " : "") << variants[i];
+    out << ")";
+  }
+  out << "\n";
   return regressions ? kExitDefect : kExitOk;
 }
 

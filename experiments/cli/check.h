@@ -35,17 +35,31 @@ struct CheckRow {
   double change = 0;      // worsening in the metric's own sense (> 0 worse), relative or |log|
   double tolerance = 0;
   bool regression = false;
+  bool skipped = false;   // the baseline's variant does not have the metric: nothing to guard
   std::string note;       // why, when it is not a number comparison
 };
 
 // Default tolerances by metric (see above).
 const std::map<std::string, double>& default_check_tolerances();
 
-// Compares `summary` with `baseline`. Only metrics with a tolerance (default
-// or given) are checked. Throws std::invalid_argument when either is not a
-// glintlab summary or the experiments differ.
+// The default tolerances with `args` ("metric=x") applied. Throws std::invalid_argument for a
+// metric the gate cannot guard (not declared in metrics/metric_registry.h, exactly as spelled, or
+// pooled_bias_<s>, which is signed), a value that is not a finite decimal number >= 0 with nothing
+// after it, or a metric given twice.
+std::map<std::string, double> parse_check_tolerances(const std::vector<std::string>& args);
+
+// Validates both files, then compares `summary` with `baseline`. Only metrics with a tolerance are
+// checked; a metric the baseline's variant lacks gives a row marked `skipped`.
+// Throws std::invalid_argument naming the file (`summary_file`, `baseline_file`) when either is not a
+// glintlab summary (schema glintlab-summary/1, a string "experiment", "variants" with unique non-empty
+// names, metric entries with a "mean"), when a mean is neither null nor a finite number in the metric's
+// declared range (metrics::value_range), when the baseline's mean of a gated metric is null (it cannot
+// gate it), or when the experiments differ. A null mean in the summary (a NaN frame of the run) is a
+// regression, not an error.
 std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohmann::json& baseline,
-                                    const std::map<std::string, double>& tolerances);
+                                    const std::map<std::string, double>& tolerances,
+                                    const std::string& summary_file = "the summary",
+                                    const std::string& baseline_file = "the baseline");
 
 // The CLI: prints a table to `out`; 0 no regression, 1 a regression, 2 bad input.
 int run_check(const std::string& summary_path, const std::string& baseline_path,

@@ -5,6 +5,8 @@
 
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace glintlab {
 
@@ -18,10 +20,11 @@ void add_tune_command(CLI::App& app, int& exit_code) {
                 "KEY=RANGE (repeatable): KEY a dotted option path (taa.alpha, ssaa_grid, material.glint_sigma), "
                 "RANGE lo:hi, lo:hi:log or a,b,... (choices)")
       ->required();
-  c->add_option("--objectives", o->objectives,
+  // Split here, not by CLI11 (which drops empty items): "deltaE2000,,flip" is refused, not read as two.
+  auto objectives = std::make_shared<std::vector<std::string>>();
+  c->add_option("--objectives", *objectives,
                 "metrics to minimise, comma-separated (flicker_ratio and glint_density_ratio as |ln ratio|; gpu_ms; "
                 "deltaE2000, flip, temporal_error_mc, ...)")
-      ->delimiter(',')
       ->required();
   c->add_option("--trials", o->trials, "the study's total of finished trials (every worker stops there)")
       ->required()
@@ -36,7 +39,17 @@ void add_tune_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"sqlite", "journal"}));
   c->add_option("--cache", o->cache_dir, "reference cache folder (default: results/cache/reference)");
   c->add_option("--device", o->device, "Vulkan device: index or part of its name (default: lavapipe)");
-  c->callback([o, &exit_code] { exit_code = tune(*o, std::cerr); });
+  c->callback([o, objectives, &exit_code] {
+    o->objectives.clear();
+    for (const std::string& list : *objectives)
+      for (size_t at = 0;;) {
+        const size_t comma = list.find(',', at);
+        o->objectives.push_back(list.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
+        if (comma == std::string::npos) break;
+        at = comma + 1;
+      }
+    exit_code = tune(*o, std::cerr);
+  });
 }
 
 }  // namespace glintlab

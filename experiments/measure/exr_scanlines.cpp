@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <vector>
 #if defined(__x86_64__)
+#include <cpuid.h>
 #include <immintrin.h>
 #endif
 
@@ -77,6 +78,18 @@ void deinterleave(const std::uint8_t* in, std::uint8_t* out, size_t n) {
   if (i < n) out[i] = *a;
 }
 
+#if defined(__x86_64__)
+// Whether the CPU converts halves (F16C) and the OS saves the AVX registers it uses, from CPUID
+// (clang 14's __builtin_cpu_supports does not know "f16c").
+bool cpu_has_f16c() {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  if (!__get_cpuid(1, &a, &b, &c, &d) || !(c & bit_F16C) || !(c & bit_OSXSAVE)) return false;
+  unsigned lo = 0, hi = 0;
+  __asm__("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+  return (lo & 6) == 6;  // XMM and YMM state
+}
+#endif
+
 // n halves (little-endian bits) to floats at dst[0], dst[stride], ...: with F16C where the CPU has it.
 #if defined(__x86_64__)
 __attribute__((target("f16c"))) void halves_to_floats_f16c(const std::uint8_t* src, float* dst, size_t stride,
@@ -92,7 +105,7 @@ __attribute__((target("f16c"))) void halves_to_floats_f16c(const std::uint8_t* s
 #endif
 void halves_to_floats(const std::uint8_t* src, float* dst, size_t stride, size_t n) {
 #if defined(__x86_64__)
-  static const bool f16c = __builtin_cpu_supports("f16c");
+  static const bool f16c = cpu_has_f16c();
   if (f16c) return halves_to_floats_f16c(src, dst, stride, n);
 #endif
   for (size_t x = 0; x < n; ++x) {
@@ -218,7 +231,7 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
     enum class Rgba { kNo, kFloat, kHalf } rgba = Rgba::kNo;
 #if defined(__x86_64__)
     {
-      static const bool f16c = __builtin_cpu_supports("f16c");
+      static const bool f16c = cpu_has_f16c();
       const auto& want = plan[size_t(p)];
       bool one_type = nc == 4 && want.size() >= 3;
       for (const Wanted& x : want) one_type = one_type && x.type == want[0].type;
@@ -289,6 +302,37 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
     for (size_t i = 0; i < out.pixel_count(); ++i)
       for (size_t c = channels.size(); c < nc; ++c) out.data[i * nc + c] = 1.0f;
   return true;
+}
+
+std::string exr_chunk_problem(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "";
+  const std::uint64_t file_size = std::uint64_t(st.st_size);
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = quiet;
+  Context ctx;
+  int parts = 0;
+  if (exr_start_read(&ctx.c, path.c_str(), &init) != EXR_ERR_SUCCESS || exr_get_count(ctx.c, &parts) != EXR_ERR_SUCCESS)
+    return "";
+  for (int p = 0; p < parts; ++p) {
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    int32_t lines = 0;
+    if (exr_get_storage(ctx.c, p, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE) continue;
+    if (exr_get_data_window(ctx.c, p, &dw) != EXR_ERR_SUCCESS ||
+        exr_get_scanlines_per_chunk(ctx.c, p, &lines) != EXR_ERR_SUCCESS || lines <= 0)
+      return "part " + std::to_string(p) + " has no readable data window";
+    for (std::int64_t y = dw.min.y; y <= dw.max.y; y += lines) {
+      exr_chunk_info_t ci;
+      const std::string chunk = "the chunk of line " + std::to_string(y) + " of part " + std::to_string(p);
+      if (exr_read_scanline_chunk_info(ctx.c, p, int(y), &ci) != EXR_ERR_SUCCESS)
+        return chunk + " cannot be found (the file is " + std::to_string(file_size) + " bytes)";
+      if (ci.packed_size > file_size || ci.data_offset > file_size - ci.packed_size)
+        return chunk + " ends at byte " + std::to_string(ci.data_offset + ci.packed_size) + ", past the end of the file (" +
+               std::to_string(file_size) + " bytes)";
+    }
+  }
+  return "";
 }
 
 }  // namespace glintlab

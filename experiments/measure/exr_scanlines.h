@@ -24,4 +24,11 @@ namespace glintlab {
 // read it with OpenImageIO, which names what is wrong with a damaged file.
 bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out);
 
+// What makes the OpenEXR file at `path` incomplete, "" when nothing does: every chunk of every
+// scanline part must lie within the file (a file cut short, as a writer killed mid-write leaves it,
+// has chunks that end past its end or a table of chunks that cannot be read). Reads only the table
+// and each chunk's few header bytes. "" too for a file OpenEXRCore does not open (not an OpenEXR
+// file: its reader names what is wrong) and for tiled and deep parts (not checked).
+std::string exr_chunk_problem(const std::string& path);
+
 }  // namespace glintlab

@@ -30,6 +30,7 @@
 #include <optional>
 #include <regex>
 #include <set>
+#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -257,7 +258,12 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     // ---- options, before any file is opened
     if (o.tests.empty()) throw ConfigError("measure: give at least one --test [NAME=]SEQ");
     if (o.tests.size() > 64) throw ConfigError("measure: at most 64 --test sequences");
-    if (!(o.fps > 0 && o.fps <= 1000)) throw ConfigError("--fps: must be in (0, 1000], got " + std::to_string(o.fps));
+    if (!(o.fps >= kMinFps && o.fps <= kMaxFps)) {
+      std::ostringstream msg;
+      msg << "--fps: " << o.fps << " is not allowed; allowed: frames per second in [" << kMinFps << ", " << kMaxFps
+          << "]";
+      throw ConfigError(msg.str());
+    }
     if (o.first > o.last)
       throw ConfigError("--frames: FIRST " + std::to_string(o.first) + " is after LAST " + std::to_string(o.last));
     if (!o.motion.empty() && !o.motion_from.empty())
@@ -299,11 +305,11 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       if (!range) {  // without --frames, every sequence has exactly the frames of the base one
         const auto all = list_frames(parse_sequence(text, what), what);
         if (all.size() != p.numbers.size())
-          throw ConfigError(what + ": '" + text + "' has " + std::to_string(all.size()) + " frames (" +
-                            std::to_string(all.front().number) + " to " + std::to_string(all.back().number) +
-                            ") but " + (o.reference.empty() ? "the first test" : "the reference") + " has " +
-                            std::to_string(p.numbers.size()) + " (" + std::to_string(p.numbers.front()) + " to " +
-                            std::to_string(p.numbers.back()) + "); give --frames FIRST:LAST to measure a common range");
+          throw ConfigError(what + ": '" + text + "' has " +
+                            frame_count_text(all.size(), all.front().number, all.back().number) + ", but " +
+                            (o.reference.empty() ? "the first test" : "the reference") + " has " +
+                            frame_count_text(p.numbers.size(), p.numbers.front(), p.numbers.back()) +
+                            "; give --frames FIRST:LAST to measure a common range");
       }
       return f;
     };
@@ -326,11 +332,17 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       const FrameHeader h = read_frame_header(m.paths[0]);
       std::string layer = m.seq.layer;
       if (!colour_of_motion.empty()) {
+        // Only a layer named for vectors: a colour layer's R and G are never read as motion.
         layer = vector_layer(p.convention, h, m.seq.layer);
-        if (layer.empty() && p.convention != MotionConvention::Pixels)
+        if (layer.empty()) {
+          std::string names;
+          for (const auto& n : motion_layer_names(p.convention)) names += (names.empty() ? "" : ", ") + n;
           throw ConfigError(m.what + ": '" + m.paths[0] + "' has no layer of " +
-                            std::string(enum_name(kMotionConventionNames, p.convention)) +
-                            " vectors; the file has: " + channel_list(h));
+                            std::string(enum_name(kMotionConventionNames, p.convention)) + " vectors (a layer named " +
+                            names + "; colour channels are never read as vectors); the file has: " +
+                            channel_list(h) + ". Give the vectors' files with --motion SEQ, or no vectors "
+                            "(optical flow)");
+        }
       }
       p.motion_channels = motion_channels(p.convention, h, layer, m.paths[0]);
       m.channels = p.motion_channels.backward;

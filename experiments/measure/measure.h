@@ -20,6 +20,8 @@
 
 namespace glintlab {
 
+constexpr double kMinFps = 1e-3, kMaxFps = 1000;  // --fps: one frame in 1000 s to 1000 frames a second
+
 struct MeasureSource {
   std::string name;  // the variant name ("" = from the sequence's path)
   std::string seq;   // SEQ (experiments/measure/sequence.h)
@@ -38,7 +40,7 @@ struct MeasureOptions {
   std::string space;                        // OCIO space of every input; "" = file tag, else scene_linear
   std::vector<std::string> metrics;         // per-pixel metrics and groups (select_metrics); empty = deltaE2000, flip
   int first = INT_MIN, last = INT_MAX;      // --frames FIRST:LAST (frame numbers, inclusive)
-  double fps = 24.0;                        // time_s = (frame index) / fps
+  double fps = 24.0;                        // time_s = (frame index) / fps, in [kMinFps, kMaxFps]
   std::string name = "measure";             // the summary's "experiment" (what `check` matches)
   std::string file;                         // the experiment file, for a frames-only experiment
   std::string display, view;                // previews ("" = the defaults of an experiment's "output")

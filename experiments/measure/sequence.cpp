@@ -82,10 +82,13 @@ bool find_field(const std::string& name, Field* f) {
 
 // Frames of `dir` whose names are prefix + number + suffix, with the number written as the field
 // writes it (a round trip, so "frame_01.exr" is not frame 1 of "frame_%04d.exr").
-std::vector<SequenceFrame> match_frames(const fs::path& dir, const Field& f, const std::string& what) {
+// `folder`: the field was inferred from a folder's names, so a name of the same prefix and suffix whose
+// number is padded otherwise ("frame_1.exr" beside "frame_0001.exr") is an error, not left out.
+std::vector<SequenceFrame> match_frames(const fs::path& dir, const Field& f, const std::string& what,
+                                        bool folder = false) {
   const std::string pattern = f.prefix + "%0" + std::to_string(f.width) + "d" + f.suffix;
   const std::regex re(regex_escape(f.prefix) + "([0-9]{1,9})" + regex_escape(f.suffix));
-  std::vector<SequenceFrame> out;
+  std::vector<SequenceFrame> out, other_padding;
   std::error_code ec;
   fs::directory_iterator it(dir.empty() ? fs::path(".") : dir, ec);
   if (ec) throw ConfigError(what + ": cannot list the folder '" + dir.string() + "' (" + ec.message() + ")");
@@ -94,13 +97,27 @@ std::vector<SequenceFrame> match_frames(const fs::path& dir, const Field& f, con
     std::smatch m;
     if (!std::regex_match(name, m, re)) continue;
     const int number = std::stoi(m[1]);
-    if (format_number(pattern, number) != name) continue;
+    if (format_number(pattern, number) != name) {
+      if (folder) other_padding.push_back({number, name});
+      continue;
+    }
     out.push_back({number, (dir / name).string()});
     if (out.size() > size_t(kMaxSequenceFrames))
       throw ConfigError(what + ": more than " + std::to_string(kMaxSequenceFrames) + " frames in '" + dir.string() +
                         "'");
   }
   std::sort(out.begin(), out.end(), [](const SequenceFrame& a, const SequenceFrame& b) { return a.number < b.number; });
+  if (!other_padding.empty()) {
+    const SequenceFrame& odd = *std::min_element(
+        other_padding.begin(), other_padding.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
+    const auto twin = std::find_if(out.begin(), out.end(), [&](const SequenceFrame& fr) { return fr.number == odd.number; });
+    const std::string where = what + ": the folder '" + dir.string() + "' holds '" + odd.path + "'";
+    if (twin != out.end())
+      throw ConfigError(where + " and '" + fs::path(twin->path).filename().string() + "', both frame " +
+                        std::to_string(odd.number) + ": which one is meant is ambiguous; keep one of them");
+    throw ConfigError(where + ", whose number is padded otherwise than its other frames' (" + pattern +
+                      "); rename it, or give a pattern such as '" + (dir / pattern).string() + "'");
+  }
   return out;
 }
 
@@ -172,7 +189,7 @@ std::vector<SequenceFrame> list_frames(const SequenceSpec& seq, const std::strin
     f.prefix = groups.begin()->first.first;
     f.suffix = groups.begin()->first.second;
     f.width = groups.begin()->second;
-    frames = match_frames(p, f, what);
+    frames = match_frames(p, f, what, true);
   } else {
     if (!find_field(p.filename().string(), &f))
       throw ConfigError(what + ": '" + seq.pattern + "' is neither a folder nor a pattern with one frame field " +
@@ -222,6 +239,8 @@ FrameHeader read_frame_header(const std::string& path) {
     }
     for (int c = 0; c < spec.nchannels; ++c) h.channels.push_back(spec.channel_name(c));
   }
+  if (const std::string problem = exr_chunk_problem(path); !problem.empty())
+    throw ConfigError("'" + path + "' is truncated or damaged: " + problem);
   return h;
 }
 
@@ -317,6 +336,11 @@ Image read_frame_channels(const std::string& path, const std::vector<std::string
   return out;
 }
 
+std::string frame_count_text(size_t count, int first, int last) {
+  if (count == 1) return "1 frame, " + std::to_string(first);
+  return std::to_string(count) + " frames, " + std::to_string(first) + " to " + std::to_string(last);
+}
+
 std::vector<std::string> frame_paths(const SequenceSpec& seq, const std::vector<int>& numbers,
                                      const std::string& what) {
   std::map<int, std::string> by_number;
@@ -326,8 +350,8 @@ std::vector<std::string> frame_paths(const SequenceSpec& seq, const std::vector<
     auto it = by_number.find(n);
     if (it == by_number.end())
       throw ConfigError(what + ": '" + seq.text + "' has no frame " + std::to_string(n) + " (it has " +
-                        std::to_string(by_number.size()) + " frames, " + std::to_string(by_number.begin()->first) +
-                        " to " + std::to_string(by_number.rbegin()->first) + ")");
+                        frame_count_text(by_number.size(), by_number.begin()->first, by_number.rbegin()->first) +
+                        ")");
     out.push_back(it->second);
   }
   return out;
@@ -336,8 +360,9 @@ std::vector<std::string> frame_paths(const SequenceSpec& seq, const std::vector<
 std::vector<int> first_frame_numbers(const std::string& seq, int count, const std::string& what) {
   const std::vector<SequenceFrame> all = list_frames(parse_sequence(seq, what), what);
   if (int(all.size()) < count)
-    throw ConfigError(what + ": '" + seq + "' has " + std::to_string(all.size()) + " frames, the run needs " +
-                      std::to_string(count));
+    throw ConfigError(what + ": '" + seq + "' has " +
+                      (all.size() == 1 ? std::string("1 frame") : std::to_string(all.size()) + " frames") +
+                      ", the run needs " + std::to_string(count));
   std::vector<int> out;
   for (int k = 0; k < count; ++k) {
     out.push_back(all[size_t(k)].number);

@@ -53,6 +53,9 @@ struct SequenceFrame {
 // several sequences in one folder, a path that is not a regular file.
 std::vector<SequenceFrame> list_frames(const SequenceSpec& seq, const std::string& what);
 
+// "1 frame, 4" or "3 frames, 4 to 6" (for messages).
+std::string frame_count_text(size_t count, int first, int last);
+
 // The files of the frames with these numbers, in that order: ConfigError naming the first missing one.
 std::vector<std::string> frame_paths(const SequenceSpec& seq, const std::vector<int>& numbers, const std::string& what);
 

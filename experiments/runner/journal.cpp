@@ -9,6 +9,7 @@
 #include <fcntl.h>
 #include <set>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <fstream>
 #include <unistd.h>
 #include <utility>
@@ -19,8 +20,30 @@ namespace glintlab {
 
 namespace {
 constexpr const char* kJournal = "records.jsonl";
+constexpr const char* kLock = ".glintlab.lock";
 // A line of the journal (dump_json: a string that is not UTF-8 does not fail the run).
 std::string line_of(const nlohmann::json& j) { return dump_json(j) + "\n"; }
+
+// Which command's outputs a journal header stands for: `measure`'s, or `run`'s (a render-only run too).
+std::string owner_of(const nlohmann::json& header) {
+  const auto c = header.find("command");
+  return c != header.end() && *c == "measure" ? "measure" : "run";
+}
+
+// A new journal must not replace another command's: its frames.csv, summary.json and images would
+// be replaced in part and the rest left beside the new ones. ConfigError when `journal` (the first
+// line) is a header of another command than `header`'s; nothing when there is no readable header.
+void refuse_other_commands_folder(const fs::path& journal, const nlohmann::json& header) {
+  std::ifstream in(journal);
+  std::string line;
+  if (!in || !std::getline(in, line)) return;
+  const nlohmann::json old = nlohmann::json::parse(line, nullptr, false);
+  if (!old.is_object() || !old.contains("type") || old["type"] != "run") return;
+  const std::string was = owner_of(old), now = owner_of(header);
+  if (was != now)
+    throw ConfigError(journal.parent_path().string() + " holds the outputs of `" + was + "` (" + journal.string() +
+                      "); `" + now + "` would mix its outputs with them: give another --out, or remove the folder");
+}
 }  // namespace
 
 std::string Journal::header_difference(const nlohmann::json& a, const nlohmann::json& b) {
@@ -60,17 +83,28 @@ void Journal::check_shape(int variants, int frames, int references) const {
 
 Journal::Journal(const fs::path& dir, const nlohmann::json& header, bool resume) : path_(dir / kJournal) {
   // One writer per folder: the lock is held until this Journal is destroyed (or the process dies).
-  const fs::path lock = dir / ".glintlab.lock";
-  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0) throw IoError(lock.string() + ": cannot open (" + std::strerror(errno) + ")");
-  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-    const int e = errno;
+  // The lock file is removed when the lock is released, while it is still held: a writer that opened
+  // it just before then locks a file no longer in the folder, sees that, and tries again.
+  const fs::path lock = dir / kLock;
+  for (int attempt = 0; lock_fd_ < 0; ++attempt) {
+    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0) throw IoError(lock.string() + ": cannot open (" + std::strerror(errno) + ")");
+    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int e = errno;
+      ::close(lock_fd_);
+      lock_fd_ = -1;
+      if (e == EWOULDBLOCK)
+        throw ConfigError(dir.string() + ": another glintlab run is writing this folder (it holds " + lock.string() +
+                          "); wait for it to finish, or give another --out");
+      throw IoError(lock.string() + ": cannot lock (" + std::strerror(e) + ")");
+    }
+    struct stat held {}, named {};
+    if (::fstat(lock_fd_, &held) == 0 && ::stat(lock.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev)
+      break;
     ::close(lock_fd_);
     lock_fd_ = -1;
-    if (e == EWOULDBLOCK)
-      throw ConfigError(dir.string() + ": another glintlab run is writing this folder (it holds " + lock.string() +
-                        "); wait for it to finish, or give another --out");
-    throw IoError(lock.string() + ": cannot lock (" + std::strerror(e) + ")");
+    if (attempt == 100) throw IoError(lock.string() + ": replaced while it was being locked, 100 times");
   }
   try {  // a constructor that throws runs no destructor: the lock is released here
     if (resume && fs::exists(path_)) {
@@ -85,26 +119,32 @@ Journal::Journal(const fs::path& dir, const nlohmann::json& header, bool resume)
       for (const auto& [key, r] : frames_) text += line_of(to_json(r));
       write_text_atomic(path_, text);
     } else {
+      refuse_other_commands_folder(path_, header);
       header_ = header;
       write_text_atomic(path_, line_of(header_));
     }
   } catch (...) {
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+    release_lock();
     throw;
   }
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd_ < 0) {
     const int e = errno;
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+    release_lock();
     throw IoError(path_.string() + ": cannot open for appending (" + std::strerror(e) + ")");
   }
 }
 
+void Journal::release_lock() {
+  if (lock_fd_ < 0) return;
+  ::unlink((path_.parent_path() / kLock).c_str());  // still held: see the constructor
+  ::close(lock_fd_);
+  lock_fd_ = -1;
+}
+
 Journal::~Journal() {
   if (fd_ >= 0) ::close(fd_);
-  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the folder's lock
+  release_lock();
 }
 
 Journal::Journal(Journal&& o) noexcept

@@ -27,11 +27,14 @@ namespace glintlab {
 class Journal final : public RecordSink {
  public:
   // Opens DIR/records.jsonl. resume = false: a new journal with `header`
-  // (an existing one is replaced). resume = true: the existing journal is
+  // (an existing one is replaced; one of another command, `run`'s for `measure` or
+  // the other way round, is a ConfigError naming the folder). resume = true: the existing journal is
   // loaded; its header must equal `header` (ConfigError naming what differs,
   // down to the input file that changed); a missing journal starts a new one.
   // The folder is locked (flock on DIR/.glintlab.lock) while the Journal
-  // lives: a second run into the same folder is a ConfigError at once.
+  // lives: a second run into the same folder is a ConfigError at once. The
+  // lock file is removed when the Journal is destroyed (a killed process
+  // leaves it, unlocked: the next run takes it).
   Journal(const std::filesystem::path& dir, const nlohmann::json& header, bool resume);
   ~Journal() override;
   Journal(Journal&& o) noexcept;
@@ -65,6 +68,7 @@ class Journal final : public RecordSink {
   Journal() = default;
   void read(const std::filesystem::path& path);
   void append(const nlohmann::json& line);
+  void release_lock();  // removes DIR/.glintlab.lock and unlocks it
 
   std::filesystem::path path_;
   int fd_ = -1;

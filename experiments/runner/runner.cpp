@@ -309,6 +309,17 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
     log << "error: merge: name the shard folders to join\n";
     return kExitBadInput;
   }
+  // The merged run is written into --out, and each shard's image folders are copied there: --out
+  // must be neither a shard folder nor inside one.
+  for (const auto& d : dirs) {
+    std::error_code ec;
+    const fs::path rel = fs::weakly_canonical(out, ec).lexically_relative(fs::weakly_canonical(d, ec));
+    if (!ec && !rel.empty() && *rel.begin() != "..") {
+      log << "error: merge: --out " << out << " is " << (rel == "." ? "" : "inside ") << "the shard folder " << d
+          << ", which merge reads; give another --out (e.g. beside the shards)\n";
+      return kExitBadInput;
+    }
+  }
   std::vector<Journal> journals;
   try {
     for (const auto& d : dirs) {

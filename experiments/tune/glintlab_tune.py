@@ -17,7 +17,13 @@ trial's settings applied, named trial-NNNN) and runs `glintlab run` on it with t
 cache, so it renders only its variant; its objectives come from the run's summary.json. When the study
 is complete a worker writes (atomically) STUDY_DIR/trials.csv, STUDY_DIR/pareto.json and
 STUDY_DIR/tune_report.html.
-Exit codes: 0 complete, 1 trials failed beyond the budget's retries, 2 bad input, 4 I/O, 10 missing module.
+Each worker samples with a seed of its own: the study's seed for the first worker to join it, seeds derived
+from it and the worker's number for the others (worker_seed), so no two workers, on this machine or under
+a scheduler, nor a resumed study's new ones, draw the same settings. A journal whose last line was cut (a
+writer killed mid-append) loses that line and goes on; a storage file that cannot be read as a study is
+exit 2, naming it.
+Exit codes: 0 complete, 1 trials failed beyond the budget's retries, 2 bad input (a damaged storage file
+too), 4 I/O, 10 missing module.
 """
 import copy
 import csv
@@ -43,6 +49,7 @@ except ImportError as e:  # pragma: no cover - the package is a bootstrap depend
 HEARTBEAT_S = 5.0
 GRACE_S = 120.0          # a heartbeat older than this: the worker is gone (another host, or a hung one)
 POLL_S = 1.0
+STALE_LOCK_S = 60.0      # Optuna's journal lock file older than this was left by a killed writer
 RATIO_OBJECTIVES = ("flicker_ratio", "frame_diff_ratio")
 
 
@@ -69,19 +76,102 @@ class Lock:
         os.close(self.fd)
 
 
+class StorageDamaged(Exception):
+    """The study's storage file cannot be read as an Optuna study (exit 2, naming the file)."""
+
+
+def storage_path(study_dir, kind):
+    return os.path.join(study_dir, "study.journal" if kind == "journal" else "study.db")
+
+
+def recover_torn_journal(path):
+    """Drops a journal's last line when it was cut (no newline at its end: a writer killed mid-append).
+
+    Optuna's reader skips such a line, but the next append would be written onto it and make the journal
+    unreadable. Appends are made under Optuna's lock file (PATH.lock); one older than STALE_LOCK_S was left
+    by a killed writer (an append takes milliseconds) and is removed, so no worker waits on it forever.
+    Called under STUDY_DIR/.tune.lock."""
+    if not os.path.isfile(path):
+        return
+    lock_file = path + ".lock"  # JournalFileOpenLock's name for it
+    try:
+        if time.time() - os.path.getmtime(lock_file) > STALE_LOCK_S:
+            os.unlink(lock_file)
+            print(f"tune: {lock_file} was left by a writer killed mid-append: removed", file=sys.stderr)
+    except FileNotFoundError:
+        pass
+    lock = optuna.storages.JournalFileOpenLock(path)
+    lock.acquire()
+    try:
+        with open(path, "rb+") as f:
+            size = f.seek(0, os.SEEK_END)
+            if size == 0:
+                return
+            f.seek(size - 1)
+            if f.read(1) == b"\n":
+                return
+            keep = size - 1
+            while keep > 0:  # back to the last newline, a block at a time
+                start = max(0, keep - 65536)
+                f.seek(start)
+                block = f.read(keep - start)
+                nl = block.rfind(b"\n")
+                if nl >= 0:
+                    keep = start + nl + 1
+                    break
+                keep = start
+            if keep == 0:  # not one whole line: not a journal a killed writer cut short
+                raise StorageDamaged(f"{path} holds no complete line: it is not an Optuna journal; restore it "
+                                     "from a copy, or start a new study in another --study folder")
+            f.truncate(keep)
+            f.flush()
+            os.fsync(f.fileno())
+        print(f"tune: {path}: its last line was cut ({size - keep} bytes; a writer killed mid-append): dropped, "
+              "the study goes on (a trial whose record it was is retried)", file=sys.stderr)
+    finally:
+        lock.release()
+
+
 def storage_of(study_dir, kind):
+    path = storage_path(study_dir, kind)
     if kind == "journal":
-        path = os.path.join(study_dir, "study.journal")
         return optuna.storages.JournalStorage(
             optuna.storages.JournalFileStorage(path, lock_obj=optuna.storages.JournalFileOpenLock(path)))
-    return optuna.storages.RDBStorage(f"sqlite:///{os.path.join(study_dir, 'study.db')}",
-                                      engine_kwargs={"connect_args": {"timeout": 60}})
+    return optuna.storages.RDBStorage(f"sqlite:///{path}", engine_kwargs={"connect_args": {"timeout": 60}})
 
 
-def sampler_of(d):
+def open_study(study_dir, d, sampler=None, create=False):
+    """The study in its storage (created when `create`); StorageDamaged naming the file when the storage
+    cannot be read as one."""
+    path = storage_path(study_dir, d["storage"])
+    name = d["experiment"] + "/" + d["base"]
+    try:
+        if d["storage"] == "journal":
+            recover_torn_journal(path)
+        storage = storage_of(study_dir, d["storage"])
+        if create:
+            return optuna.create_study(study_name=name, storage=storage, sampler=sampler,
+                                       directions=["minimize"] * len(d["objectives"]), load_if_exists=True)
+        return optuna.load_study(study_name=name, storage=storage, sampler=sampler)
+    except StorageDamaged:
+        raise
+    except Exception as e:  # what a damaged file raises depends on where it is damaged
+        raise StorageDamaged(f"{path} cannot be read as an Optuna study ({type(e).__name__}: {e}); restore it "
+                             "from a copy, or start a new study in another --study folder") from e
+
+
+def worker_seed(seed, worker):
+    """The sampler seed of the study's `worker`-th worker (0, 1, ... in the order they joined it): the
+    study's seed for the first, so a one-worker study is reproducible; distinct ones for the others, so
+    no two workers draw the same settings."""
+    return (seed + worker * 0x9E3779B9) % 2**32
+
+
+def sampler_of(d, worker=0):
+    seed = worker_seed(d["seed"], worker)
     if d["sampler"] == "nsga2":
-        return optuna.samplers.NSGAIISampler(seed=d["seed"])
-    return optuna.samplers.TPESampler(seed=d["seed"], n_startup_trials=max(4, min(10, d["trials"] // 4)))
+        return optuna.samplers.NSGAIISampler(seed=seed)
+    return optuna.samplers.TPESampler(seed=seed, n_startup_trials=max(4, min(10, d["trials"] // 4)))
 
 
 def distributions(d):
@@ -146,10 +236,12 @@ class Worker:
         self.me = f"{socket.gethostname()}:{os.getpid()}"
         optuna.logging.set_verbosity(optuna.logging.WARNING)
         with Lock(self.lock):  # one creator: the others load it
-            self.study = optuna.create_study(
-                study_name=self.d["experiment"] + "/" + self.d["base"], storage=storage_of(study_dir, self.d["storage"]),
-                sampler=sampler_of(self.d), directions=["minimize"] * len(self.d["objectives"]),
-                load_if_exists=True)
+            study = open_study(study_dir, self.d, create=True)
+            # The workers are numbered in the order they join the study (a resumed study's new workers
+            # get new numbers): each samples with a seed of its own.
+            self.number = study.user_attrs.get("workers_joined", 0)
+            study.set_user_attr("workers_joined", self.number + 1)
+            self.study = open_study(study_dir, self.d, sampler=sampler_of(self.d, self.number))
         self.dists = distributions(self.d)
 
     # ---- the study's bookkeeping, always under the lock
@@ -282,7 +374,7 @@ def pareto(trials):
 def write_outputs(study_dir):
     with open(os.path.join(study_dir, "study.json"), encoding="utf-8") as f:
         d = json.load(f)
-    study = optuna.load_study(study_name=d["experiment"] + "/" + d["base"], storage=storage_of(study_dir, d["storage"]))
+    study = open_study(study_dir, d)
     trials = study.get_trials(deepcopy=False)
     keys = [s["key"] for s in d["space"]]
     objs = d["objectives"]
@@ -434,17 +526,21 @@ def main(argv):
         return 2
     study_dir = argv[1]
     workers = int(argv[argv.index("--workers") + 1]) if "--workers" in argv else 1
-    if workers > 1:
-        procs = [subprocess.Popen([sys.executable, "-B", __file__, study_dir]) for _ in range(workers)]
-        codes = [p.wait() for p in procs]
-        rc = max(codes)
-    else:
-        rc = Worker(study_dir).loop()
-    if rc == 0 and workers >= 1:
-        with Lock(os.path.join(study_dir, ".tune.lock")):
-            n = write_outputs(study_dir)
-        print(f"tune: {n} trials complete; {os.path.join(study_dir, 'trials.csv')}, pareto.json, tune_report.html",
-              file=sys.stderr)
+    try:
+        if workers > 1:
+            procs = [subprocess.Popen([sys.executable, "-B", __file__, study_dir]) for _ in range(workers)]
+            codes = [p.wait() for p in procs]
+            rc = max(codes)
+        else:
+            rc = Worker(study_dir).loop()
+        if rc == 0 and workers >= 1:
+            with Lock(os.path.join(study_dir, ".tune.lock")):
+                n = write_outputs(study_dir)
+            print(f"tune: {n} trials complete; {os.path.join(study_dir, 'trials.csv')}, pareto.json, "
+                  "tune_report.html", file=sys.stderr)
+    except StorageDamaged as e:
+        print(f"error: tune: {e}", file=sys.stderr)
+        return 2
     return rc
 
 

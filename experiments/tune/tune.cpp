@@ -143,6 +143,8 @@ json tune_definition(const TuneOptions& o, const json& experiment, const std::st
   if (o.objectives.empty()) fail("--objectives: at least one of " + join(kObjectives));
   std::vector<std::string> seen;
   for (const std::string& m : o.objectives) {
+    if (m.empty())
+      fail("--objectives: an empty name (two commas in a row, or one at an end); allowed: " + join(kObjectives));
     if (std::find(kObjectives.begin(), kObjectives.end(), m) == kObjectives.end())
       fail("--objectives: unknown objective \"" + m + "\"; allowed: " + join(kObjectives));
     if (std::find(seen.begin(), seen.end(), m) != seen.end()) fail("--objectives: \"" + m + "\" twice");
@@ -263,6 +265,17 @@ int tune(const TuneOptions& o, std::ostream& log) {
   try {
     StudyLock lock(dir);
     const fs::path study = dir / "study.json";
+    // The study's trials live in its storage: a study that has begun (--resume, or trials/ written)
+    // without it would start over and write over trials/0000...
+    const fs::path storage = dir / (o.storage == "journal" ? "study.journal" : "study.db");
+    const bool stored = fs::is_regular_file(storage) && fs::file_size(storage) > 0;
+    if (!stored && (o.resume || fs::exists(dir / "trials"))) {
+      log << "error: tune: " << (o.resume ? "--resume: " : "") << dir.string() << (fs::exists(dir / "trials") ? " holds trials/ but" : "")
+          << " has " << (fs::exists(storage) ? "an empty " : "no ") << storage.string()
+          << ", the study's storage: there is no study to continue (restore the file, or start a new study "
+          << "in another --study folder without --resume)\n";
+      return kExitBadInput;
+    }
     if (fs::exists(study)) {
       const json old = read_json_file(study.string());
       if (identity(old) != identity(def)) {

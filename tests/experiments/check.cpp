@@ -106,3 +106,134 @@ TEST(Check, CommandLineExitCodes) {
   EXPECT_EQ(run_check((dir / "worse.json").string(), (dir / "base.json").string(), {"flicker_ratio"}, out4, err4), 2);
   EXPECT_EQ(run_check((dir / "nope.json").string(), (dir / "base.json").string(), {}, out4, err4), 2);
 }
+
+namespace {
+
+struct CheckRun {
+  int rc;
+  std::string out, err;
+};
+
+// run_check on `s` (summary) against `b` (baseline), written to files named summary.json and base.json.
+CheckRun check_files(const json& s, const json& b, const std::vector<std::string>& tolerances = {}) {
+  const glintlab::test::TempDir tmp("check");
+  std::ofstream(tmp / "summary.json") << s.dump();
+  std::ofstream(tmp / "base.json") << b.dump();
+  std::ostringstream out, err;
+  const int rc = run_check((tmp / "summary.json").string(), (tmp / "base.json").string(), tolerances, out, err);
+  return {rc, out.str(), err.str()};
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// Bad input must be exit 2 with a message naming every part given.
+void expect_refused(const CheckRun& r, const std::vector<std::string>& parts) {
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  for (const auto& p : parts) EXPECT_TRUE(has(r.err, p)) << "missing \"" << p << "\" in: " << r.err;
+}
+
+}  // namespace
+
+// A baseline whose gated mean is null or "nan" cannot gate that metric: exit 2 naming the file, the
+// variant and the metric, not a pass with one check fewer (on main both pass a ΔE00 of 1000, exit 0).
+TEST(Check, BaselineMeanThatCannotGateIsBadInput) {
+  json awful = summary();
+  awful["variants"][0]["metrics"]["deltaE2000"]["mean"] = 1000.0;
+  for (const json& bad_mean : {json(nullptr), json("nan")}) {
+    json base = summary();
+    base["variants"][0]["metrics"]["deltaE2000"]["mean"] = bad_mean;
+    expect_refused(check_files(awful, base), {"base.json", "\"no-aa\"", "\"deltaE2000\"", "a finite number >= 0"});
+  }
+  json not_an_entry = summary();  // on main: read as "not in the baseline", exit 0
+  not_an_entry["variants"][0]["metrics"]["deltaE2000"] = 0.5;
+  expect_refused(check_files(awful, not_an_entry), {"base.json", "\"deltaE2000\"", "\"mean\""});
+}
+
+// Each metric's mean must be in its declared range, in either file: a ΔE00 of -5 or a FLIP of 2 is
+// refused (on main a summary ΔE00 of -5 passes, exit 0, and so does a FLIP of 2 in the baseline
+// against a summary of 2.01).
+TEST(Check, MeansOutOfTheirMetricsRangeAreBadInput) {
+  json negative = summary();
+  negative["variants"][0]["metrics"]["deltaE2000"]["mean"] = -5.0;
+  expect_refused(check_files(negative, summary()), {"summary.json", "\"no-aa\"", "\"deltaE2000\"", "-5",
+                                                    "a finite number >= 0"});
+  json flip2 = summary(), flip201 = summary();
+  flip2["variants"][0]["metrics"]["flip"]["mean"] = 2.0;
+  flip201["variants"][0]["metrics"]["flip"]["mean"] = 2.01;
+  expect_refused(check_files(flip201, flip2), {"\"flip\"", "a number in [0, 1]"});
+  // A string in the summary is malformed input (on main: a regression, exit 1), while null there is a
+  // NaN frame of the run: a regression (exit 1), as before.
+  json text = summary(), null = summary();
+  text["variants"][1]["metrics"]["flicker_ratio"]["mean"] = "0.8";
+  expect_refused(check_files(text, summary()), {"summary.json", "\"taa\"", "\"flicker_ratio\""});
+  null["variants"][1]["metrics"]["flicker_ratio"]["mean"] = nullptr;
+  EXPECT_EQ(check_files(null, summary()).rc, 1);
+}
+
+// A variant named twice is ambiguous in either file (on main the summary's last copy is compared and
+// the first, with ΔE00 1000, ignored: exit 0).
+TEST(Check, VariantNamedTwiceIsBadInput) {
+  json twice = summary();
+  json first = twice["variants"][0];
+  first["metrics"]["deltaE2000"]["mean"] = 1000.0;
+  twice["variants"].insert(twice["variants"].begin(), first);
+  expect_refused(check_files(twice, summary()), {"summary.json", "\"no-aa\" is given twice"});
+  expect_refused(check_files(summary(), twice), {"base.json", "\"no-aa\" is given twice"});
+}
+
+// Schema and experiment: both files must say they are glintlab summaries of the same, named
+// experiment (on main any "schema" value and two files without "experiment" pass, exit 0).
+TEST(Check, SchemaAndExperimentMustMatch) {
+  json tune = summary();
+  tune["schema"] = "glintlab-tune/1";
+  expect_refused(check_files(tune, summary()), {"summary.json", "\"schema\"", "glintlab-summary/1"});
+  json bytes = summary();  // not UTF-8 (only a caller's JSON can hold that): refused, not a JSON error
+  bytes["schema"] = std::string("\xff\xfe");
+  EXPECT_THROW(check_summary(bytes, summary(), default_check_tolerances()), std::invalid_argument);
+  json anonymous = summary();
+  anonymous.erase("experiment");
+  expect_refused(check_files(anonymous, anonymous), {"summary.json", "\"experiment\""});
+  json other = summary();
+  other["experiment"] = "default";
+  expect_refused(check_files(other, summary()), {"summary.json", "base.json", "\"default\"", "\"regression\""});
+}
+
+// --tolerance takes an exact, gateable metric name and a finite decimal >= 0 with nothing after it.
+// On main the first four (and the two after) are ignored or read as 0.1: exit 0.
+TEST(Check, ToleranceMustNameAKnownMetricAndAPlainNumber) {
+  const json s = summary();
+  for (const std::string bad : {"nosuch=0.1", "DeltaE2000=0.1", "deltaE2000=0.1junk", "deltaE2000=0.1=2",
+                                "pooled_bias_8=0.1", "deltaE2000= 0.1", "deltaE2000=0x1p-3"}) {
+    const CheckRun r = check_files(s, s, {bad});
+    expect_refused(r, {"--tolerance \"" + bad + "\"", "allowed"});
+  }
+  for (const std::string bad : {"deltaE2000=inf", "deltaE2000=-1", "deltaE2000=", "=0.1", "deltaE2000"})
+    expect_refused(check_files(s, s, {bad}), {"--tolerance"});
+  expect_refused(check_files(s, s, {"flip=0.1", "flip=0.2"}), {"flip is given twice"});
+  EXPECT_TRUE(has(check_files(s, s, {"nosuch=0.1"}).err, "deltaE2000"));  // the allowed names are listed
+
+  json worse = s;  // a tolerance given properly is applied
+  worse["variants"][0]["metrics"]["deltaE2000"]["mean"] = 0.6;  // +20 %
+  EXPECT_EQ(check_files(worse, s).rc, 1);
+  EXPECT_EQ(check_files(worse, s, {"deltaE2000=0.25"}).rc, 0);
+  EXPECT_EQ(check_files(worse, s, {"deltaE2000=1e-1"}).rc, 1);
+}
+
+// The summary line counts the checks that ran and names each skipped metric with why and for which
+// variants (on main it says only "no regression in 8 checks").
+TEST(Check, SummaryLineCountsChecksAndNamesSkippedMetrics) {
+  const CheckRun r = check_files(summary(), summary());
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "no regression in 8 checks")) << r.out;
+  EXPECT_TRUE(has(r.out, "skipped flip (not measured in the baseline for taa)")) << r.out;
+  EXPECT_TRUE(has(r.out, "skipped flicker_excess (not measured in the baseline for no-aa, taa)")) << r.out;
+}
+
+// The committed baseline passes its own validation: every gated metric of every variant is checked.
+TEST(Check, CommittedBaselineGatesEverything) {
+  const std::string base = std::string(GLINTLAB_SOURCE_DIR) + "/results/baselines/regression.json";
+  std::ostringstream out, err;
+  EXPECT_EQ(run_check(base, base, {}, out, err), 0) << err.str();
+  EXPECT_TRUE(has(out.str(), "no regression in 33 checks")) << out.str();
+  EXPECT_TRUE(has(out.str(), "; none skipped")) << out.str();
+}

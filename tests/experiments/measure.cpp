@@ -82,6 +82,11 @@ double summary_mean(const nlohmann::json& s, const std::string& variant, const s
   return std::nan("");
 }
 
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 // Writes a float EXR with the given channel names.
 void write_channels(const fs::path& path, const Image& img, const std::vector<std::string>& names) {
   OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::FLOAT);
@@ -541,7 +546,29 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
     if (k != 4) fs::copy_file(run_dir() / "no-aa" / name, gap / name);
     if (k < 6) fs::copy_file(run_dir() / "no-aa" / name, few / name);
   }
+  // A frame cut short in the middle of the sequence (its header intact), a frame given twice with two
+  // paddings, one padded otherwise, and a sequence of one frame.
+  const fs::path cut = scratch("cut"), twins = scratch("twins"), padded = scratch("padded"), one = scratch("one");
+  for (const fs::path& d : {cut, twins, padded, one}) fs::create_directories(d);
+  for (int k = 0; k < 8; ++k)
+    for (const fs::path& d : {cut, twins, padded}) fs::copy_file(run_dir() / "no-aa" / frame_name(k), d / frame_name(k));
+  fs::resize_file(cut / frame_name(5), fs::file_size(cut / frame_name(5)) / 2);
+  fs::copy_file(run_dir() / "no-aa" / frame_name(1), twins / "frame_1.exr");
+  fs::copy_file(run_dir() / "no-aa" / frame_name(7), padded / "frame_09.exr");
+  fs::copy_file(run_dir() / "no-aa" / frame_name(4), one / frame_name(4));
   const std::vector<Case> cases = {
+      {"colour read as motion (--motion-from a file without a vector layer)",
+       [&](MeasureOptions& o) { o.motion_from = "reference"; }, "has no layer of pixels vectors"},
+      {"a frame rate that makes time_s infinite", [&](MeasureOptions& o) { o.fps = 1e-320; }, "--fps: 9.99989e-321 is not allowed"},
+      {"a frame rate above the range", [&](MeasureOptions& o) { o.fps = 1001; }, "in [0.001, 1000]"},
+      {"a truncated frame mid-sequence", [&](MeasureOptions& o) { o.tests[1].seq = cut.string(); },
+       "frame_0005.exr' is truncated or damaged"},
+      {"one frame under two names", [&](MeasureOptions& o) { o.tests[0].seq = twins.string(); },
+       "'frame_1.exr' and 'frame_0001.exr', both frame 1"},
+      {"a frame padded otherwise", [&](MeasureOptions& o) { o.tests[0].seq = padded.string(); },
+       "'frame_09.exr', whose number is padded otherwise"},
+      {"a sequence of one frame", [&](MeasureOptions& o) { o.tests[0].seq = one.string(); },
+       "has no frame 0 (it has 1 frame, 4)"},
       {"another size", [&](MeasureOptions& o) { o.tests[0].seq = small.string(); }, "48x27"},
       {"fewer frames", [&](MeasureOptions& o) { o.tests[0].seq = few.string(); }, "no frame 6"},
       {"a gap", [&](MeasureOptions& o) { o.tests[0].seq = gap.string(); }, "no frame 4"},
@@ -605,6 +632,36 @@ TEST_F(Measure, BadInputIsAnErrorOrACount) {
   EXPECT_FALSE(std::isnan(cell(rows, "taa", 5, "flicker_ratio")));
   const nlohmann::json s = read_json(scratch("bad-counted") / "summary.json");
   EXPECT_TRUE(s["variants"][0]["metrics"]["deltaE2000"]["mean"].is_null());
+  EXPECT_FALSE(fs::exists(scratch("bad-counted") / ".glintlab.lock"));  // released and removed at exit 1 too
+}
+
+// A folder that holds another command's outputs is refused without --resume, both ways: `measure`
+// would replace a run's records, frames.csv and summary.json and leave its images beside them.
+TEST_F(Measure, RefusesAFolderOfAnotherCommand) {
+  const fs::path ran = scratch("owned-by-run");
+  fs::create_directories(ran);
+  fs::copy_file(run_dir() / "records.jsonl", ran / "records.jsonl");
+  const std::string journal = file_text(ran / "records.jsonl");
+  MeasureOptions o = own_options("owned-by-run");
+  o.motion = (run_dir() / "motion").string();
+  std::string log;
+  EXPECT_EQ(measure(o, &log), 2) << log;
+  EXPECT_NE(log.find("holds the outputs of `run`"), std::string::npos) << log;
+  EXPECT_TRUE(file_text(ran / "records.jsonl") == journal) << "the run's records.jsonl was replaced";
+  EXPECT_FALSE(fs::exists(ran / "summary.json"));
+
+  o.out_dir = scratch("owned-by-measure").string();
+  ASSERT_EQ(measure(o, &log), 0) << log;
+  EXPECT_FALSE(fs::exists(scratch("owned-by-measure") / ".glintlab.lock"));
+  EXPECT_EQ(measure(o, &log), 0) << log;  // the same command again replaces its own outputs
+  RunOptions opt;
+  opt.report = false;
+  opt.experiment = (*dir_ / "orbit.json").string();
+  opt.out_dir = scratch("owned-by-measure").string();
+  opt.cache_dir = (*dir_ / "cache").string();
+  std::ostringstream run_log;
+  EXPECT_EQ(run_experiment(opt, run_log), 2) << run_log.str();
+  EXPECT_NE(run_log.str().find("holds the outputs of `measure`"), std::string::npos) << run_log.str();
 }
 
 // glintlab's own vector files (pixels, with the distance channels) are measured as read, without the

@@ -182,6 +182,21 @@ TEST(Resume, ShardsMergeIntoTheSingleRun) {
   EXPECT_NE(l2.str().find("shard(s) 2/3 missing"), std::string::npos) << l2.str();
   std::ostringstream l3;
   EXPECT_EQ(merge_runs({dirs[0], dirs[0], dirs[1]}, (root / "bad").string(), false, l3), 2);
+  // --out naming a shard, or a folder inside one, is refused before anything is written (it would copy
+  // the shard's folders over themselves).
+  const std::string shard0 = dirs[0];
+  const std::string records = [&] {
+    std::ifstream in(fs::path(shard0) / "records.jsonl");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  for (const std::string& out : {shard0, shard0 + "/", (fs::path(shard0) / "merged").string()}) {
+    std::ostringstream l4;
+    EXPECT_EQ(merge_runs(dirs, out, false, l4), 2) << out;
+    EXPECT_NE(l4.str().find("the shard folder " + shard0), std::string::npos) << l4.str();
+  }
+  EXPECT_FALSE(fs::exists(fs::path(shard0) / "merged"));
+  std::ifstream in(fs::path(shard0) / "records.jsonl");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), records);
 }
 
 TEST(ReferenceCache, ConcurrentWritersNeverCorruptAnEntry) {

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -117,6 +118,12 @@ TEST_F(Tune, BadSpaceIsAnErrorNamingTheKeyBeforeAnyTrial) {
                                " --base taa --space taa.alpha=0.1:0.2 --objectives flip --trials 2 --study " + q(study));
   EXPECT_EQ(unmeasured.code, 2);
   EXPECT_NE(unmeasured.output.find("\"flip\" is not measured"), std::string::npos) << unmeasured.output;
+  // An empty item in the list is a typo, not one objective fewer.
+  const Result empty = sh(std::string(GLINTLAB_CLI) + " tune " + q(root() / "tiny.json") +
+                          " --base taa --space taa.alpha=0.1:0.2 --objectives deltaE2000,,flicker_ratio --trials 1"
+                          " --study " + q(study) + " --cache " + q(root() / "cache"));
+  EXPECT_EQ(empty.code, 2) << empty.output;
+  EXPECT_NE(empty.output.find("--objectives: an empty name"), std::string::npos) << empty.output;
   EXPECT_FALSE(fs::exists(study / "trials"));
 }
 
@@ -151,14 +158,16 @@ TEST_F(Tune, WorkersUnderGnuParallelShareOneStudyAndStopAtExactlyN) {
   const fs::path study = root() / "p";
   // The reference once, so both workers start on the same footing.
   ASSERT_EQ(sh(tune_cmd(root(), root() / "warm", 1)).code, 0);
-  const Result r = sh("parallel --will-cite -N0 -j 3 --halt now,fail=1 " + tune_cmd(root(), study, 5) + " ::: 1 2 3");
+  const Result r = sh("parallel --will-cite -N0 -j 4 --halt now,fail=1 " + tune_cmd(root(), study, 6) + " ::: 1 2 3 4");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto rows = read_csv(study / "trials.csv");
-  EXPECT_EQ(count_state(rows, "COMPLETE"), 5u);
-  std::set<std::string> numbers, workers;
+  EXPECT_EQ(count_state(rows, "COMPLETE"), 6u);
+  std::set<std::string> numbers, workers, settings;
   for (const Row& row : rows) {
     EXPECT_TRUE(numbers.insert(row.at("trial")).second) << "trial " << row.at("trial") << " twice";
     if (row.at("state") == "COMPLETE") {
+      EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
+          << "trial " << row.at("trial") << " repeats another's settings";
       workers.insert(row.at("worker"));
       EXPECT_TRUE(fs::exists(study / "trials" / (std::string(4 - row.at("trial").size(), '0') + row.at("trial")) / "run" /
                              "summary.json"));
@@ -205,6 +214,67 @@ TEST_F(Tune, AWorkerKilledMidTrialLosesOnlyThatTrialWhichIsRetried) {
     if (row.at("state") == "COMPLETE" && !row.at("retry_of").empty() && row.at("taa.alpha") == killed_alpha)
       retried = true;
   EXPECT_TRUE(retried) << "the killed trial's settings were not run again";
+  // The new worker samples with a seed of its own: no finished trial's settings come again.
+  std::set<std::string> settings;
+  for (const Row& row : rows)
+    if (row.at("state") == "COMPLETE")
+      EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
+          << "trial " << row.at("trial") << " repeats the settings of another";
+}
+
+// Two workers of one `tune` draw distinct settings (each its own sampler seed): 4 trials, 4 points.
+TEST_F(Tune, WorkersDrawDistinctSettings) {
+  ASSERT_EQ(sh(tune_cmd(root(), root() / "warm", 1)).code, 0);  // the reference cached
+  const Result r = sh(tune_cmd(root(), root() / "w", 4, "--workers 2"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto rows = read_csv(root() / "w" / "trials.csv");
+  EXPECT_EQ(count_state(rows, "COMPLETE"), 4u);
+  std::set<std::string> settings;
+  for (const Row& row : rows)
+    EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
+        << "trial " << row.at("trial") << " repeats the settings of another";
+}
+
+// A study's storage damaged, empty or gone: exit 2 naming the file (never a traceback, never a silent
+// fresh start over trials/0000); a journal whose last line was cut by a killed writer goes on.
+TEST_F(Tune, DamagedOrMissingStorageIsAnErrorNamingTheFile) {
+  const fs::path study = root() / "d";
+  ASSERT_EQ(sh(tune_cmd(root(), study, 1)).code, 0);
+  auto expect_refused = [&](const std::string& what, const std::string& extra, const std::vector<std::string>& says) {
+    const Result r = sh(tune_cmd(root(), study, 2, extra));
+    EXPECT_EQ(r.code, 2) << what << "\n" << r.output;
+    for (const auto& w : says) EXPECT_NE(r.output.find(w), std::string::npos) << what << ": no \"" << w << "\" in\n" << r.output;
+    EXPECT_EQ(r.output.find("Traceback"), std::string::npos) << what << "\n" << r.output;
+  };
+  auto random_bytes = [](const fs::path& p) {
+    std::mt19937 rng(39);
+    std::string bytes(8192, '\0');
+    for (char& c : bytes) c = char(rng() & 0xff);
+    std::ofstream(p, std::ios::binary | std::ios::trunc) << bytes;
+  };
+  const std::string db = (study / "study.db").string();
+  random_bytes(study / "study.db");
+  expect_refused("a study.db of random bytes", "--resume", {db, "cannot be read as an Optuna study"});
+  std::ofstream(study / "study.db", std::ios::trunc).close();
+  expect_refused("an empty study.db", "--resume", {"--resume", "an empty " + db});
+  fs::remove(study / "study.db");
+  expect_refused("no study.db", "--resume", {"--resume", "no " + db});
+  expect_refused("no study.db beside trials/", "", {"holds trials/", "no " + db});
+  EXPECT_EQ(read_csv(study / "trials.csv").size(), 1u);  // nothing started over
+
+  const fs::path journal_study = root() / "j";
+  ASSERT_EQ(sh(tune_cmd(root(), journal_study, 2, "--storage journal")).code, 0);
+  const fs::path journal = journal_study / "study.journal";
+  fs::resize_file(journal, fs::file_size(journal) - 5);  // the last line cut, as by a killed writer
+  const Result resumed = sh(tune_cmd(root(), journal_study, 3, "--storage journal --resume"));
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("its last line was cut"), std::string::npos) << resumed.output;
+  EXPECT_EQ(count_state(read_csv(journal_study / "trials.csv"), "COMPLETE"), 3u);
+  random_bytes(journal);
+  const Result damaged = sh(tune_cmd(root(), journal_study, 4, "--storage journal --resume"));
+  EXPECT_EQ(damaged.code, 2) << damaged.output;
+  EXPECT_NE(damaged.output.find(journal.string()), std::string::npos) << damaged.output;
+  EXPECT_EQ(damaged.output.find("Traceback"), std::string::npos) << damaged.output;
 }
 
 namespace {
@@ -301,5 +371,10 @@ TEST_F(Tune, SlurmJobArraysRunShardsWithAMergeAndTuneWorkers) {
   ASSERT_EQ(t.code, 0) << t.output << sh("cat " + q(root() / "tune-1.log")).output;
   const auto trials = read_csv(root() / "study" / "trials.csv");
   EXPECT_EQ(count_state(trials, "COMPLETE"), 4u);
+  std::set<std::string> settings;  // the two tasks' workers sample with seeds of their own
+  for (const Row& row : trials)
+    if (row.at("state") == "COMPLETE")
+      EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
+          << "trial " << row.at("trial") << " repeats another's settings";
   EXPECT_TRUE(fs::exists(root() / "study" / "study.journal"));
 }
