@@ -39,6 +39,20 @@ bool gateable(const std::string& m) {
   throw std::invalid_argument(file + ": " + what);
 }
 
+// The noise floor of metric m of the truth the baseline's variant `v` was measured against
+// (summary.json references[].floor; 0 where the baseline has none).
+double floor_of(const nlohmann::json& baseline, const nlohmann::json& v, const std::string& m) {
+  const auto refs = baseline.find("references");
+  if (refs == baseline.end() || !refs->is_array() || !v.contains("reference")) return 0;
+  for (const auto& r : *refs)
+    if (r.is_object() && r.value("name", nlohmann::json()) == v["reference"] && r.contains("floor") &&
+        r["floor"].is_object() && r["floor"].contains(m) && r["floor"][m].is_number()) {
+      const double f = r["floor"][m].get<double>();
+      return std::isfinite(f) && f > 0 ? f : 0;
+    }
+  return 0;
+}
+
 // The mean of metric m of a validated variant entry: absent (nullopt), null (NaN) or a number.
 std::optional<double> mean_of(const nlohmann::json& variant, const std::string& m) {
   const auto& metrics = variant["metrics"];
@@ -174,6 +188,12 @@ std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohman
       switch (sense_of(metric)) {
         case Sense::Lower:
           r.change = (r.current - r.baseline) / std::max(std::abs(r.baseline), 1e-12);
+          // A change the truth's own noise could make is not a regression: the tolerance is at least
+          // the baseline truth's noise floor of the metric (stated in the output).
+          if (const double f = floor_of(baseline, bv, metric) / std::max(std::abs(r.baseline), 1e-12); f > r.tolerance) {
+            r.tolerance = f;
+            r.floor = f;
+          }
           break;
         case Sense::Higher:
           r.change = (r.baseline - r.current) / std::max(std::abs(r.baseline), 1e-12);
@@ -224,7 +244,8 @@ int run_check(const std::string& summary_path, const std::string& baseline_path,
     out << std::left << std::setw(18) << r.variant << std::setw(20) << r.metric << std::right << std::setprecision(5)
         << std::setw(12) << r.baseline << std::setw(12) << (r.note.empty() ? r.current : NAN) << std::setw(10)
         << std::setprecision(3) << (r.note.empty() ? r.change : NAN) << std::setw(10) << r.tolerance << "  "
-        << (r.regression ? "REGRESSION" : "ok") << (r.note.empty() ? "" : " (" + r.note + ")") << "\n";
+        << (r.regression ? "REGRESSION" : "ok") << (r.note.empty() ? "" : " (" + r.note + ")")
+        << (r.floor > 0 ? " (allowed raised to the truth's noise floor)" : "") << "\n";
   }
   out << (regressions ? std::to_string(regressions) + " regression(s)" : std::string("no regression")) << " in "
       << checks << " checks against " << baseline_path;

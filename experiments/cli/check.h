@@ -37,6 +37,7 @@ struct CheckRow {
   bool regression = false;
   bool skipped = false;   // the baseline's variant does not have the metric: nothing to guard
   std::string note;       // why, when it is not a number comparison
+  double floor = 0;       // > 0: the tolerance was raised to the truth's noise floor (relative to the baseline)
 };
 
 // Default tolerances by metric (see above).

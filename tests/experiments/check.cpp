@@ -237,3 +237,31 @@ TEST(Check, CommittedBaselineGatesEverything) {
   EXPECT_TRUE(has(out.str(), "no regression in 33 checks")) << out.str();
   EXPECT_TRUE(has(out.str(), "; none skipped")) << out.str();
 }
+
+// The truth's noise floor (summary.json references[].floor): a change smaller than the noise the
+// baseline's truth puts into a figure is not a regression, so the allowed worsening of a metric is at
+// least its floor relative to the baseline's value, and the row says so; beyond the floor the gate
+// still fails. A baseline without floors keeps the tolerances as given.
+TEST(Check, TheAllowedWorseningIsAtLeastTheTruthsNoiseFloor) {
+  json base = summary();
+  base["variants"][0]["reference"] = "reference";
+  base["references"] = {{{"name", "reference"}, {"floor", {{"deltaE2000", 0.05}}}}};  // 10 % of no-aa's 0.5
+  json worse = base;
+  worse["variants"][0]["metrics"]["deltaE2000"]["mean"] = 0.54;  // 8 % worse: above 2 %, within the floor
+  auto rows = check_summary(worse, base, default_check_tolerances());
+  EXPECT_EQ(regressions(rows), 0u);
+  bool raised = false;
+  for (const auto& r : rows)
+    if (r.variant == "no-aa" && r.metric == "deltaE2000") {
+      raised = true;
+      EXPECT_DOUBLE_EQ(r.tolerance, 0.1);
+      EXPECT_DOUBLE_EQ(r.floor, 0.1);
+    }
+  EXPECT_TRUE(raised);
+  worse["variants"][0]["metrics"]["deltaE2000"]["mean"] = 0.56;  // 12 %: beyond the floor
+  EXPECT_EQ(regressions(check_summary(worse, base, default_check_tolerances())), 1u);
+  json no_floor = base;
+  no_floor.erase("references");
+  worse["variants"][0]["metrics"]["deltaE2000"]["mean"] = 0.54;
+  EXPECT_EQ(regressions(check_summary(worse, no_floor, default_check_tolerances())), 1u);
+}
