@@ -36,7 +36,7 @@ void add_tune_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"sqlite", "journal"}));
   c->add_option("--cache", o->cache_dir, "reference cache folder (default: results/cache/reference)");
   c->add_option("--device", o->device, "Vulkan device: index or part of its name (default: lavapipe)");
-  c->callback([o, &exit_code] { exit_code = tune(*o, std::cerr); });
+  c->callback([o, &exit_code] { exit_code = run_guarded([&] { return tune(*o, std::cerr); }, std::cerr); });
 }
 
 }  // namespace glintlab
