@@ -3,6 +3,7 @@
 #include "core/util/atomic_file.h"
 
 #include "core/util/content_hash.h"
+#include "core/util/data_dir.h"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
@@ -142,7 +143,8 @@ std::string default_cache_dir() {
 }  // namespace
 
 ShaderCompiler::ShaderCompiler(std::string shader_dir, std::string cache_dir)
-    : shader_dir_(std::move(shader_dir)), cache_dir_(cache_dir.empty() ? default_cache_dir() : std::move(cache_dir)) {
+    : shader_dir_(shader_dir.empty() ? data_path("shaders") : std::move(shader_dir)),
+      cache_dir_(cache_dir.empty() ? default_cache_dir() : std::move(cache_dir)) {
   init_glslang();
 }
 

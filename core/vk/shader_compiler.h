@@ -27,8 +27,9 @@ struct CompiledShader {
 
 class ShaderCompiler {
  public:
+  // shader_dir "" = shaders/ of the data folder (core/util/data_dir.h);
   // cache_dir "" = $XDG_CACHE_HOME/glintlab/spirv (or ~/.cache/...); "-" = no disk cache.
-  explicit ShaderCompiler(std::string shader_dir = GLINTLAB_SHADER_DIR, std::string cache_dir = "");
+  explicit ShaderCompiler(std::string shader_dir = "", std::string cache_dir = "");
 
   // `path` is relative to the shader folder (or absolute).
   CompiledShader compile(const std::string& path, ShaderStage stage, const std::vector<std::string>& defines = {});

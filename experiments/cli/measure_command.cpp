@@ -1,5 +1,6 @@
 // `glintlab measure`: the run's metrics for image sequences of any renderer
 // (experiments/measure/measure.h).
+#include "core/util/data_dir.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
 #include "experiments/measure/measure.h"
@@ -73,7 +74,7 @@ void add_measure_command(CLI::App& app, int& exit_code) {
             std::cerr << "error: --frames: expected FIRST:LAST (frame numbers, e.g. 1:48), got \"" << *frames << "\"\n";
             return int(kExitBadInput);
           }
-          if (o->out_dir.empty()) o->out_dir = std::string(GLINTLAB_RESULTS_DIR) + "/measure";
+          if (o->out_dir.empty()) o->out_dir = results_path("measure");
           return measure_sequences(*o, std::cerr);
         },
         std::cerr);

@@ -1,5 +1,6 @@
 // `glintlab render`, `glintlab run` and `glintlab merge`: the experiment runner
 // from the command line.
+#include "core/util/data_dir.h"
 #include "core/util/json_check.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/commands.h"
@@ -68,8 +69,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
       }
       if (opt->out_dir.empty()) {
         try {
-          opt->out_dir = std::string(GLINTLAB_RESULTS_DIR) + "/" +
-                         ExperimentSpec::load(resolve_experiment_path(opt->experiment)).name;
+          opt->out_dir = results_path(ExperimentSpec::load(resolve_experiment_path(opt->experiment)).name);
         } catch (const ConfigError& e) {
           std::cerr << "error: " << e.what() << "\n";
           return int(kExitBadInput);

@@ -48,7 +48,7 @@ void add_tune_command(CLI::App& app, int& exit_code) {
         if (comma == std::string::npos) break;
         at = comma + 1;
       }
-    exit_code = tune(*o, std::cerr);
+    exit_code = run_guarded([&] { return tune(*o, std::cerr); }, std::cerr);
   });
 }
 

@@ -1,5 +1,6 @@
 #include "experiments/report/report.h"
 
+#include "core/util/data_dir.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
 
@@ -79,14 +80,10 @@ Child run_child(const std::vector<std::string>& argv) {
   return c;
 }
 
-std::string env_or(const char* name, const std::string& fallback) {
-  const char* v = std::getenv(name);
-  return v && *v ? std::string(v) : fallback;
-}
 
 }  // namespace
 
-std::string report_script_path() { return std::string(GLINTLAB_EXPERIMENT_DIR) + "/report/glintlab_report.py"; }
+std::string report_script_path() { return data_path("experiments/report/glintlab_report.py"); }
 
 int write_report(const std::string& run_dir, std::ostream& log) {
   std::error_code ec;
@@ -99,7 +96,8 @@ int write_report(const std::string& run_dir, std::ostream& log) {
         << " is not a glintlab run directory (`glintlab run` writes one)\n";
     return kExitBadInput;
   }
-  const std::string script = env_or("GLINTLAB_REPORT_SCRIPT", report_script_path());
+  const char* script_env = std::getenv("GLINTLAB_REPORT_SCRIPT");
+  const std::string script = script_env && *script_env ? std::string(script_env) : report_script_path();
   if (!fs::is_regular_file(script, ec)) {
     log << "error: report: the report script " << script << " is missing (set GLINTLAB_REPORT_SCRIPT to its path)\n";
     return kExitIo;

@@ -2,6 +2,7 @@
 
 #include "core/render/scene_gpu.h"
 #include "core/util/content_hash.h"
+#include "core/util/data_dir.h"
 #include "core/util/json_check.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
@@ -243,8 +244,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   ImageWriter images(out_dir, plan, cm);
   if (work.last_frame >= 0) {
     core::SceneGpu scene(ctx, data.mesh, data.env_texture);
-    ReferenceCache cache(opt.cache_dir.empty() ? std::string(GLINTLAB_RESULTS_DIR "/cache/reference")
-                                               : opt.cache_dir);
+    ReferenceCache cache(opt.cache_dir.empty() ? results_path("cache/reference") : opt.cache_dir);
     FrameLoop loop(ctx, scene, plan, data, cm, cache, log);
     loop.run(work, {journal.get(), &images});
   }

@@ -1,4 +1,5 @@
 #include "experiments/runner/version.h"
 namespace glintlab {
-const char* version() { return "0.1.0"; }
+const char* version() { return GLINTLAB_VERSION; }
+const char* commit() { return GLINTLAB_COMMIT; }
 }  // namespace glintlab

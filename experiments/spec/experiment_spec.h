@@ -132,7 +132,7 @@ struct ExperimentSpec {
 // report.html, records.jsonl, contact_sheet.png). The one check of `run` and `measure` alike.
 std::string variant_name_problem(const std::string& name);
 
-// Built-in experiments: every *.json under GLINTLAB_EXPERIMENT_DIR (not paths/), named by its
+// Built-in experiments: every *.json under the data folder's experiments/ (not paths/), named by its
 // path relative to it without extension ("default", "thesis/fig6-7-hdri-match").
 std::vector<std::string> builtin_experiment_names();
 // A name of a built-in experiment, or a path to a file.

@@ -1,6 +1,7 @@
 #include "experiments/tune/tune.h"
 
 #include "core/util/atomic_file.h"
+#include "core/util/data_dir.h"
 #include "core/util/json_check.h"
 #include "experiments/cli/exit_codes.h"
 #include "experiments/spec/experiment_spec.h"
@@ -235,7 +236,7 @@ int tune(const TuneOptions& o, std::ostream& log) {
     return kExitBadInput;
   }
   const std::string name = experiment.is_object() ? experiment.value("name", std::string()) : std::string();
-  const fs::path dir = o.study_dir.empty() ? fs::path(GLINTLAB_RESULTS_DIR) / "tune" / (name + "-" + o.base)
+  const fs::path dir = o.study_dir.empty() ? fs::path(results_path("tune")) / (name + "-" + o.base)
                                            : fs::path(o.study_dir);
   json def;
   try {
@@ -258,7 +259,7 @@ int tune(const TuneOptions& o, std::ostream& log) {
   def["glintlab"] = n > 0 ? std::string(self, size_t(n)) : std::string("glintlab");
   def["trials"] = o.trials;
   def["experiment_file"] = fs::absolute(file).string();
-  def["cache"] = fs::absolute(o.cache_dir.empty() ? fs::path(GLINTLAB_RESULTS_DIR) / "cache" / "reference"
+  def["cache"] = fs::absolute(o.cache_dir.empty() ? fs::path(results_path("cache/reference"))
                                                   : fs::path(o.cache_dir))
                      .string();
   def["device"] = o.device;
@@ -302,7 +303,7 @@ int tune(const TuneOptions& o, std::ostream& log) {
   const char* py_env = std::getenv("GLINTLAB_PYTHON");
   const std::string py = py_env && *py_env ? py_env : (::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3"
                                                                                                  : "python3");
-  const std::string script = std::string(GLINTLAB_EXPERIMENT_DIR) + "/tune/glintlab_tune.py";
+  const std::string script = data_path("experiments/tune/glintlab_tune.py");
   std::vector<std::string> argv = {py, "-B", script, dir.string(), "--workers", std::to_string(o.workers)};
   std::vector<char*> args;
   for (auto& a : argv) args.push_back(a.data());

@@ -1,5 +1,7 @@
 #include "metrics/color/color_manager.h"
 
+#include "core/util/data_dir.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -72,7 +74,7 @@ void require_rgb(const Image& img, const char* what) {
 std::string ColorManager::default_config_path() {
   const char* env = std::getenv("OCIO");
   if (env && *env) return env;
-  return GLINTLAB_OCIO_CONFIG;
+  return data_path("metrics/color/ocio/config.ocio");
 }
 
 ColorManager::ColorManager() : ColorManager(default_config_path()) {}

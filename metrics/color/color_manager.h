@@ -30,7 +30,8 @@ class ColorManager {
   ColorManager(const ColorManager&) = delete;
   ColorManager& operator=(const ColorManager&) = delete;
 
-  // $OCIO if set and non-empty, else the shipped config (compile definition GLINTLAB_OCIO_CONFIG).
+  // $OCIO if set and non-empty, else the shipped config (metrics/color/ocio/config.ocio of the data
+  // folder, core/util/data_dir.h).
   static std::string default_config_path();
 
   const std::string& config_path() const { return config_path_; }

@@ -18,14 +18,14 @@ machine's are older than the ones the binaries were built against.
 
     tests/bench/gpu_bundle.py [--build build] [--out .gpu] [--debs] [--check]
 
-writes OUT/glintlab-gpu.tar.gz (bin/, lib/, lib-fallback/, run.sh, root: the source tree the
-binaries read shaders/, experiments/ and the OCIO config from, which run.sh links to the copy of
-the repository it runs in where that path does not exist). --debs also downloads into OUT/debs/ the
+writes OUT/glintlab-gpu.tar.gz (bin/, lib/, lib-fallback/, run.sh, and share/glintlab/: the shaders,
+experiments and OCIO config as `cmake --install` puts them, which the programs find beside
+bin/). --debs also downloads into OUT/debs/ the
 Vulkan loader and the GL vendor-neutral dispatch packages that an NVIDIA driver's Vulkan ICD needs
 where the machine has no loader. --check unpacks the bundle into a temporary folder, checks with
 the dynamic loader (`ld.so --list`) that every library but glibc's resolves inside it, and runs
 `glintlab_bench --smoke` and a two-frame `glintlab run default` (report included) through run.sh.
-On the machine, from a copy of this repository:
+On the machine:
 
     for f in .gpu/debs/*.deb; do dpkg -x $f /; done; ldconfig    # only where no loader is there
     tar xzf .gpu/glintlab-gpu.tar.gz -C /tmp
@@ -148,12 +148,6 @@ RUN_SH = r"""#!/bin/sh
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
 prog=$1; shift
-root=$(cat "$here/root")  # the source tree the binaries were built in: shaders, experiments, OCIO config
-if [ ! -e "$root/shaders/passes/sand.frag" ]; then
-  src=${GLINTLAB_SOURCE:-$PWD}  # a copy of the repository: where this runs from, unless given
-  [ -e "$src/shaders/passes/sand.frag" ] || { echo "run.sh: no glintlab tree at $src (set GLINTLAB_SOURCE)" >&2; exit 2; }
-  mkdir -p "$(dirname "$root")" && ln -sfn "$src" "$root"
-fi
 glibc=$(getconf GNU_LIBC_VERSION | cut -d' ' -f2)
 if [ "$(printf '%s\n%s\n' "$(cat "$here/needs-glibc")" "$glibc" | sort -V | head -n1)" != "$(cat "$here/needs-glibc")" ]; then
   echo "run.sh: glibc $glibc is older than the $(cat "$here/needs-glibc") this bundle needs" >&2; exit 2
@@ -165,6 +159,8 @@ if [ -z "$sys_cxx" ] || ! grep -qa "GLIBCXX_$(cat "$here/needs-glibcxx")" "$sys_
 export XDG_CACHE_HOME=${XDG_CACHE_HOME:-/tmp/glintlab-cache}
 nv=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json  # where the GPU machines keep NVIDIA's ICD
 if [ -z "${VK_DRIVER_FILES:-}${VK_ICD_FILENAMES:-}" ] && [ -f "$nv" ]; then export VK_DRIVER_FILES=$nv; fi
+# Started by the loader, a program's /proc/self/exe is the loader: the data folder is named here.
+export GLINTLAB_DATA_DIR=${GLINTLAB_DATA_DIR:-$here/share/glintlab}
 # The libraries through the loader's --library-path, not LD_LIBRARY_PATH: the report's Python,
 # which glintlab starts, must not load the stubs in place of its own image libraries.
 exec /lib64/ld-linux-x86-64.so.2 --library-path "$libs" "$here/bin/$prog" "$@"
@@ -205,10 +201,8 @@ def build(args):
     n_syms = sum(make_stub(so, path, imports, os.path.join(top, "lib"), os.path.join(top, "work"))
                  for so, path in sorted(stubs.items()))
     shutil.rmtree(os.path.join(top, "work"))
-    cache = open(os.path.join(args.build, "CMakeCache.txt")).read()
-    source = re.search(r"^CMAKE_HOME_DIRECTORY:INTERNAL=(.*)$", cache, re.M).group(1)  # compiled into the binaries
-    with open(os.path.join(top, "root"), "w") as f:
-        f.write(source + "\n")
+    # the data, in share/glintlab/ beside bin/ where the programs look for it (core/util/data_dir.h)
+    subprocess.run(["cmake", "--install", args.build, "--prefix", top], check=True, capture_output=True)
     with open(os.path.join(top, "needs-glibc"), "w") as f:
         f.write(max_version(objects, "GLIBC") + "\n")
     with open(os.path.join(top, "needs-glibcxx"), "w") as f:

@@ -1,0 +1,44 @@
+// Where glintlab finds the files it reads at run time, and where it writes when not told.
+//
+// The data folder holds shaders/, experiments/ (the built-in experiments, camera paths, the report's
+// and tune's Python scripts) and metrics/color/ocio/config.ocio, laid out as in the source tree.
+// It is, in this order:
+//   - $GLINTLAB_DATA_DIR when set and not empty;
+//   - the source tree, for a program inside the build folder it was built in;
+//   - <the executable's folder>/../share/glintlab otherwise: where `cmake --install` and the Debian
+//     package put it (bin/glintlab beside share/glintlab/).
+// The default output folder (`--out`, `--cache`, `--study`) is $GLINTLAB_RESULTS_DIR when set and not
+// empty, the source tree's results/ for a program in the build folder, else results/ in the current
+// folder. The executable's path is /proc/self/exe.
+#pragma once
+
+#include <string>
+
+namespace glintlab {
+
+struct DataLocations {
+  std::string data;     // the data folder
+  std::string why;      // why that folder: "$GLINTLAB_DATA_DIR", "the source tree of the build folder ..." or
+                        // "../share/glintlab beside the executable ..."
+  std::string results;  // the default output folder
+};
+
+// The locations for a program at `executable` with the two variables set to `data_env` and
+// `results_env` ("" for unset).
+DataLocations locate_data(const std::string& data_env, const std::string& results_env, const std::string& executable);
+
+// "" when `where.data` holds the files glintlab reads, else an error that names the folder, why it
+// was chosen, the missing file and GLINTLAB_DATA_DIR.
+std::string data_dir_problem(const DataLocations& where);
+
+// The locations of this process, found on first use.
+const DataLocations& data_locations();
+
+// data_locations().data + "/" + relative, e.g. data_path("shaders"). Throws IoError with
+// data_dir_problem()'s message when the data folder is incomplete.
+std::string data_path(const std::string& relative);
+
+// data_locations().results + "/" + relative, or the folder itself for "".
+std::string results_path(const std::string& relative = "");
+
+}  // namespace glintlab

@@ -1,0 +1,160 @@
+#!/usr/bin/env bash
+# glintlab as a user without the source tree gets it: the Debian package that `cpack -G DEB` builds
+# (its name, its dependencies, its files) and the copy `cmake --install` puts in a prefix, each run
+# from a folder outside the source and build trees with the data variables unset. The package's
+# program runs `run regression`, `check` against the committed baseline, and `measure` on
+# tests/data/blender (default output folder) with `check` against the build tree's own measure;
+# every input is copied out first, and where strace works, a path opened or looked at under the
+# source or build tree fails the test. The prefix's program prints its data folder and lists the
+# experiments. A program beside no data, or GLINTLAB_DATA_DIR naming an empty folder, fails with
+# exit 4 and says where it looked and which variable to set.
+#
+#   tests/install/install_test.sh SOURCE_DIR BUILD_DIR      (ctest runs it as install.package)
+set -euo pipefail
+
+[ $# -eq 2 ] || { echo "usage: $0 SOURCE_DIR BUILD_DIR" >&2; exit 2; }
+src=$(cd "$1" && pwd -P)
+build=$(cd "$2" && pwd -P)
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/glintlab-install-test.XXXXXX")
+tmp=$(cd "$tmp" && pwd -P)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "install test: FAIL: $*" >&2; exit 1; }
+step() { echo "install test: $*"; }
+case "$tmp/" in "$src/"* | "$build/"*) fail "the temporary folder $tmp is inside the source or build tree (set TMPDIR)" ;; esac
+
+# ---------------------------------------------------------------- the package
+step "cpack -G DEB"
+(cd "$tmp" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$tmp/pkg") > "$tmp/cpack.log" 2>&1 ||
+  { cat "$tmp/cpack.log"; fail "cpack -G DEB failed"; }
+version=$(sed -n 's/^CMAKE_PROJECT_VERSION:STATIC=//p' "$build/CMakeCache.txt")
+deb=$tmp/pkg/glintlab_${version}_amd64.deb
+[ -f "$deb" ] || fail "cpack wrote $(cd "$tmp/pkg" && ls ./*.deb 2>/dev/null), not glintlab_${version}_amd64.deb"
+
+info=$(dpkg-deb -I "$deb")
+grep -qx " Package: glintlab" <<<"$info" || fail "dpkg-deb -I: no 'Package: glintlab'"$'\n'"$info"
+grep -qx " Version: $version" <<<"$info" || fail "dpkg-deb -I: no 'Version: $version'"$'\n'"$info"
+grep -qx " Architecture: amd64" <<<"$info" || fail "dpkg-deb -I: no 'Architecture: amd64'"
+depends=$(sed -n 's/^ Depends: //p' <<<"$info" | tr ',' '\n' | sed 's/^ *//; s/ .*//')
+[ -n "$depends" ] || fail "dpkg-deb -I: no Depends"
+bad=$(grep -E -- '-dev$|^(gcc|g\+\+|clang|cpp|cmake|build-essential|libstdc\+\+-[0-9]+-dev)' <<<"$depends" || true)
+[ -z "$bad" ] || fail "Depends names build-time packages: $bad"
+# Every library the program names (ELF NEEDED) belongs to a package it depends on, where dpkg knows it.
+if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf >/dev/null; then
+  needed=$(readelf -d "$build/glintlab" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')
+  [ -n "$needed" ] || fail "readelf -d lists no NEEDED library of $build/glintlab"
+  libs=$(ldd "$build/glintlab")
+  declare -A so_of real_of
+  for lib in $needed; do
+    so_of[$lib]=$(awk -v l="$lib" '$1 == l && $2 == "=>" {print $3}' <<<"$libs")
+    [ -n "${so_of[$lib]}" ] || fail "ldd does not resolve $lib, which $build/glintlab needs"
+    real_of[$lib]=$(readlink -f "${so_of[$lib]}")
+  done
+  # One query for all ("package[:arch]: path" a line); the link's path or the file's is registered.
+  owners=$(dpkg -S "${so_of[@]}" "${real_of[@]}" 2>/dev/null || true)
+  for lib in $needed; do
+    pkg=$(grep -F -e ": ${so_of[$lib]}" -e ": ${real_of[$lib]}" <<<"$owners" | head -n1 | sed 's/[:,].*//' || true)
+    [ -n "$pkg" ] || continue
+    grep -qx "$pkg" <<<"$depends" || fail "the program needs $lib, of the package $pkg, which Depends does not name"
+  done
+fi
+for p in libvulkan1 mesa-vulkan-drivers python3 python3-matplotlib python3-numpy python3-pil python3-optuna; do
+  grep -qx "$p" <<<"$depends" || fail "Depends lacks $p (the renderer's driver, the report's or tune's Python)"
+done
+
+files=$(dpkg-deb -c "$deb" | awk '{print $NF}')
+for f in ./usr/bin/glintlab ./usr/share/glintlab/shaders/passes/surface.vert ./usr/share/glintlab/shaders/tests/stress_math.comp \
+  ./usr/share/glintlab/experiments/regression.json ./usr/share/glintlab/experiments/paths/orbit-close.json \
+  ./usr/share/glintlab/experiments/thesis/fig6-7-hdri-match.json \
+  ./usr/share/glintlab/experiments/report/glintlab_report.py ./usr/share/glintlab/experiments/tune/glintlab_tune.py \
+  ./usr/share/glintlab/metrics/color/ocio/config.ocio; do
+  grep -qx "$f" <<<"$files" || fail "the package lacks $f"
+done
+stray=$(grep -E '\.(cpp|h|o|a|md)$|CMake|/tests/data/' <<<"$files" || true)
+[ -z "$stray" ] || fail "the package holds build or source files: $stray"
+dpkg-deb -x "$deb" "$tmp/root"
+
+# ---------------------------------------------------------------- cmake --install
+step "cmake --install --prefix $tmp/prefix"
+cmake --install "$build" --prefix "$tmp/prefix" > "$tmp/install.log" 2>&1 ||
+  { cat "$tmp/install.log"; fail "cmake --install failed"; }
+[ -x "$tmp/prefix/bin/glintlab" ] || fail "cmake --install put no bin/glintlab in the prefix"
+
+# ---------------------------------------------------------------- running them away from the trees
+mkdir -p "$tmp/work" "$tmp/inputs"
+cp -r "$src/tests/data/blender" "$tmp/inputs/blender"
+cp "$src/results/baselines/regression.json" "$tmp/inputs/regression-baseline.json"
+cd "$tmp/work"
+# What a user's shell has: no data variables, no OCIO, fresh caches.
+clean=(env -u GLINTLAB_DATA_DIR -u GLINTLAB_RESULTS_DIR -u GLINTLAB_REPORT_SCRIPT -u OCIO -u GLINTLAB_VALIDATION
+  XDG_CACHE_HOME="$tmp/cache")
+tracer=()
+if command -v strace >/dev/null && strace -f -qq -o /dev/null true 2>/dev/null; then
+  tracer=(strace -f -qq -e trace=%file -o "$tmp/trace")
+else
+  step "strace is unavailable: the paths the programs open are not checked"
+fi
+# Runs a program with the clean environment (traced where strace works); its output goes to $tmp/out.
+run() {
+  local rc=0
+  "${clean[@]}" ${tracer[@]+"${tracer[@]}"} "$@" > "$tmp/out" 2>&1 || rc=$?
+  if [ ${#tracer[@]} -gt 0 ]; then
+    local touched
+    touched=$(grep -F -e "\"$src/" -e "\"$build/" -e "\"$src\"" -e "\"$build\"" "$tmp/trace" | head -5 || true)
+    [ -z "$touched" ] || fail "$* looked in the source or build tree:"$'\n'"$touched"
+  fi
+  return $rc
+}
+
+pkg=$tmp/root/usr/bin/glintlab
+step "--version"
+run "$pkg" --version || { cat "$tmp/out"; fail "glintlab --version failed"; }
+head -n1 "$tmp/out" | grep -Eqx "glintlab $version \(commit ([0-9a-f]{4,40}(-dirty)?|unknown)\)" ||
+  fail "glintlab --version's first line is not 'glintlab $version (commit HASH)': $(head -n1 "$tmp/out")"
+grep -qxF "data: $tmp/root/usr/share/glintlab (../share/glintlab beside the executable $pkg)" "$tmp/out" ||
+  fail "the package's glintlab does not read its data beside it:"$'\n'"$(cat "$tmp/out")"
+[ "$(head -n1 "$tmp/out")" = "$("$build/glintlab" --version | head -n1)" ] ||
+  fail "the package's version line differs from the build tree's"
+
+step "run regression"
+t0=$(date +%s%N)
+run "$pkg" run regression --out "$tmp/work/regression" --no-report ||
+  { tail -n 30 "$tmp/out"; fail "glintlab run regression failed"; }
+[ -s "$tmp/work/regression/summary.json" ] || fail "run regression wrote no summary.json"
+run "$pkg" check "$tmp/work/regression/summary.json" "$tmp/inputs/regression-baseline.json" ||
+  { cat "$tmp/out"; fail "glintlab check of the regression run against the committed baseline failed"; }
+grep -q "no regression" "$tmp/out" || fail "check said:"$'\n'"$(cat "$tmp/out")"
+
+step "measure (tests/data/blender)"
+D=$tmp/inputs/blender
+measure_args=(measure --reference "$D/ref/frame_####.exr:ViewLayer.Combined"
+  --test spp1="$D/spp1/frame_####.exr:ViewLayer.Combined" --motion-from reference --motion-convention blender --no-report)
+run "$pkg" "${measure_args[@]}" || { tail -n 30 "$tmp/out"; fail "glintlab measure failed"; }
+[ -s "$tmp/work/results/measure/summary.json" ] ||
+  fail "measure without --out wrote no results/measure/summary.json in the current folder"
+# The same measure by the build tree's program is the baseline: the package's must not differ.
+"${clean[@]}" "$build/glintlab" "${measure_args[@]}" --out "$tmp/build-measure" > "$tmp/out" 2>&1 ||
+  { tail -n 30 "$tmp/out"; fail "the build tree's glintlab measure failed"; }
+run "$pkg" check "$tmp/work/results/measure/summary.json" "$tmp/build-measure/summary.json" ||
+  { cat "$tmp/out"; fail "the package's measure differs from the build tree's"; }
+step "run, measure and check took $(( ($(date +%s%N) - t0) / 1000000 )) ms"
+
+# ---------------------------------------------------------------- the prefix, and missing data
+prefixed=$tmp/prefix/bin/glintlab
+run "$prefixed" --version || { cat "$tmp/out"; fail "the prefix's glintlab --version failed"; }
+grep -qxF "data: $tmp/prefix/share/glintlab (../share/glintlab beside the executable $prefixed)" "$tmp/out" ||
+  fail "the prefix's glintlab does not read its data beside it:"$'\n'"$(cat "$tmp/out")"
+run "$prefixed" list || { cat "$tmp/out"; fail "the prefix's glintlab list failed"; }
+grep -q "thesis/fig6-7-hdri-match" "$tmp/out" || fail "the prefix's glintlab list lacks the thesis experiments"
+
+mkdir -p "$tmp/lonely/bin" "$tmp/empty"
+cp "$pkg" "$tmp/lonely/bin/glintlab"
+rc=0; run "$tmp/lonely/bin/glintlab" run regression --out "$tmp/work/lonely" || rc=$?
+[ $rc -eq 4 ] || fail "glintlab beside no data: exit $rc, not 4:"$'\n'"$(cat "$tmp/out")"
+grep -qF "$tmp/lonely/share/glintlab (../share/glintlab beside the executable $tmp/lonely/bin/glintlab) has no" "$tmp/out" &&
+  grep -qF "set GLINTLAB_DATA_DIR" "$tmp/out" || fail "glintlab beside no data says:"$'\n'"$(cat "$tmp/out")"
+rc=0; GLINTLAB_DATA_DIR=$tmp/empty "$pkg" list > "$tmp/out" 2>&1 || rc=$?
+[ $rc -eq 4 ] && grep -qF "$tmp/empty (\$GLINTLAB_DATA_DIR) has no" "$tmp/out" ||
+  fail "GLINTLAB_DATA_DIR=$tmp/empty glintlab list: exit $rc:"$'\n'"$(cat "$tmp/out")"
+GLINTLAB_DATA_DIR=$tmp/prefix/share/glintlab "$pkg" --version | grep -qxF "data: $tmp/prefix/share/glintlab (\$GLINTLAB_DATA_DIR)" ||
+  fail "GLINTLAB_DATA_DIR does not override the package's data folder"
+step "ok"
