@@ -217,9 +217,10 @@ TEST_F(Tune, AWorkerKilledMidTrialLosesOnlyThatTrialWhichIsRetried) {
   // The new worker samples with a seed of its own: no finished trial's settings come again.
   std::set<std::string> settings;
   for (const Row& row : rows)
-    if (row.at("state") == "COMPLETE")
+    if (row.at("state") == "COMPLETE") {
       EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
           << "trial " << row.at("trial") << " repeats the settings of another";
+    }
 }
 
 // Two workers of one `tune` draw distinct settings (each its own sampler seed): 4 trials, 4 points.
@@ -373,8 +374,9 @@ TEST_F(Tune, SlurmJobArraysRunShardsWithAMergeAndTuneWorkers) {
   EXPECT_EQ(count_state(trials, "COMPLETE"), 4u);
   std::set<std::string> settings;  // the two tasks' workers sample with seeds of their own
   for (const Row& row : trials)
-    if (row.at("state") == "COMPLETE")
+    if (row.at("state") == "COMPLETE") {
       EXPECT_TRUE(settings.insert(row.at("taa.alpha") + " " + row.at("taa.clamp")).second)
           << "trial " << row.at("trial") << " repeats another's settings";
+    }
   EXPECT_TRUE(fs::exists(root() / "study" / "study.journal"));
 }
