@@ -609,6 +609,7 @@ th .unit { display: block; font-weight: normal; color: var(--muted); font-size: 
 td:first-child, th:first-child { text-align: left; position: sticky; left: 0; background: var(--bg); }
 th:first-child { background: var(--soft); }
 td.best, b.bestkey { font-weight: 700; color: #135e2e; }
+td.tied, i.tiedkey { color: #135e2e; font-style: italic; }
 td .sub { color: var(--muted); font-size: 11px; display: block; }
 tr:hover td { background: #fafbfc; }
 .crops { display: flex; flex-wrap: wrap; gap: 14px; }
@@ -888,7 +889,7 @@ class Report:
                 d = (v.get("metrics") or {}).get(key[7:])
             return stat(d), stat(d, "p95")
 
-        best = {}
+        best, tied = {}, {}
         for key, _, _, direction in cols:
             vals = [(cell(v, key)[0], v) for v in variants]
             vals = [(x, v) for x, v in vals if x is not None]
@@ -906,6 +907,12 @@ class Report:
             target = min(d for d, _ in dist)
             if math.isfinite(target) and any(d != target for d, _ in dist):
                 best[key] = {v["name"] for d, v in dist if d == target}
+                if direction == "min" and key.startswith("metric:"):  # ties within the truth's noise floor
+                    best_v = next(v for d, v in dist if d == target)
+                    f, ref = self.floor_of(best_v["name"], key[7:]), best_v.get("reference")
+                    if f is not None:
+                        tied[key] = {v["name"] for d, v in dist
+                                     if d != target and d - target < f and v.get("reference") == ref}
         head = ("<tr><th>variant</th><th>AA<span class=unit>method</span></th><th>spp<span class=unit>samples per "
                 "pixel</span></th>" + "".join(f"<th>{esc(lab)}<span class=unit>{esc(u)}</span></th>"
                                               for _, lab, u, _ in cols) + "</tr>")
@@ -916,15 +923,21 @@ class Report:
                      f"{esc(v['name'])}</td>", f"<td>{esc(v.get('aa', ''))}</td>", f"<td>{esc(v.get('spp', ''))}</td>"]
             for key, _, _, _ in cols:
                 mean, p95 = cell(v, key)
-                cls = " class=best" if v["name"] in best.get(key, ()) else ""
-                sub = f"<span class=sub>p95 {fmt(p95)}</span>" if p95 is not None and mean is not None else ""
+                cls = (" class=best" if v["name"] in best.get(key, ()) else
+                       " class=tied" if v["name"] in tied.get(key, ()) else "")
+                floor = self.floor_of(v["name"], key[7:]) if key.startswith("metric:") else None
+                floor_text = f" · floor {fmt(floor)}" if floor is not None else ""
+                sub = (f"<span class=sub>p95 {fmt(p95)}{floor_text}</span>" if p95 is not None and mean is not None
+                       else "")
                 cells.append(f"<td{cls}>{fmt(mean)}{sub}</td>")
             body.append("<tr>" + "".join(cells) + "</tr>")
         return ("<h2 id=table>Means per variant</h2>"
                 "<p>Mean over frames, with the 95th percentile over frames in small print. GPU times leave out the "
                 "warm-up frames; temporal metrics start at frame 1. <b class=bestkey>Bold green</b> marks the best "
                 "value of a column (flicker ratio: closest to 1; glint density: closest to the reference's; PSNR: "
-                "highest; otherwise lowest). Units under each heading; <a href=#glossary>what each metric "
+                "highest; otherwise lowest); <i class=tiedkey>green italics</i> a value within the noise floor of its truth "
+                "(printed beside each figure: half the difference of the truth's two halves) of the best one, as "
+                "good as far as that truth can tell. Units under each heading; <a href=#glossary>what each metric "
                 "means</a>.</p>"
                 f"<div class=tablewrap><table><thead>{head}</thead><tbody>{''.join(body)}</tbody></table></div>"
                 + self.settings() + self.gpu_passes(passes))

@@ -206,6 +206,7 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
   char floor_text[32];
   std::snprintf(floor_text, sizeof floor_text, "ΔE00 %.3g", floor["deltaE2000"].get<double>());
   EXPECT_NE(report.find(floor_text), std::string::npos) << floor_text;
+  EXPECT_NE(report.find(" · floor "), std::string::npos) << "the floor beside the table's figures";
   EXPECT_NE(report.find("glint density ratio"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "figures" / "pareto_glint_density_ratio.svg"));
   // Plots also as SVG and PDF beside the report.
