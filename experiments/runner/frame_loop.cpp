@@ -1,6 +1,7 @@
 #include "experiments/runner/frame_loop.h"
 
 #include "core/render/sample_schedule.h"
+#include "core/render/surface_pass.h"
 #include "experiments/runner/progress.h"
 #include "metrics/frame_metrics.h"
 
@@ -14,7 +15,6 @@
 namespace glintlab {
 
 namespace {
-const char* const kHalfTargets[2] = {"color.a", "color.b"};  // core::SurfacePassOptions::half_targets
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 }  // namespace
@@ -144,7 +144,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         img = std::move(fr.images.at(setup.output));
         m.cache.store(key, *img);
         for (int hh = 0; setup.halves && hh < 2; ++hh) {
-          halves[hh] = std::move(fr.images.at(kHalfTargets[hh]));
+          halves[hh] = std::move(fr.images.at(core::SurfacePassOptions().half_targets[hh]));
           m.cache.store(half_keys[hh], *halves[hh]);
         }
       }
