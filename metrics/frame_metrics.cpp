@@ -2,6 +2,7 @@
 
 #include "metrics/color/measurement_space.h"
 #include "metrics/glint_stats.h"
+#include "metrics/metric_registry.h"
 #include "metrics/pixel_scan.h"
 #include "metrics/pooled_error.h"
 
@@ -11,6 +12,13 @@
 #include <limits>
 
 namespace glintlab::metrics {
+
+NamedValues noise_floor(const NamedValues& halves) {
+  NamedValues floor;
+  for (const auto& [name, v] : halves)
+    if (has_noise_floor(name)) floor.emplace_back(name, 0.5 * v);
+  return floor;
+}
 
 namespace {
 using Clock = std::chrono::steady_clock;

@@ -37,6 +37,10 @@ constexpr int kPooledErrorBlock = 8;  // pooled_error = pooled_rms at 8x8 px blo
 
 using NamedValues = std::vector<std::pair<std::string, double>>;
 
+// The truth's noise floor of each metric that has one (has_noise_floor in metrics/metric_registry.h),
+// from the metrics of its half B measured against its half A: half their value.
+NamedValues noise_floor(const NamedValues& halves);
+
 class FrameMetrics {
  public:
   FrameMetrics(const ColorManager& cm, std::string working_space, std::vector<std::string> per_pixel,

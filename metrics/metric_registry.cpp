@@ -86,6 +86,15 @@ std::optional<ValueRange> value_range(const std::string& name) {
   return std::nullopt;
 }
 
+bool has_noise_floor(const std::string& name) {
+  static const char* const kNames[] = {"deltaE2000", "deltaEITP", "flip", "temporal_error", "temporal_error_mc",
+                                       "flicker_excess", "temporal_lag", "flicker_excess_fixed", "pooled_error",
+                                       "glint_hist_emd_oct"};
+  for (const char* n : kNames)
+    if (name == n) return true;
+  return name.rfind("pooled_rms_", 0) == 0;
+}
+
 std::vector<std::string> metric_group_names() { return {"flicker", "glints", "pooled"}; }
 
 std::vector<std::string> select_metrics(const std::vector<std::string>& list, MetricOptions& options) {

@@ -44,6 +44,13 @@ const std::vector<FrameStatistic>& frame_statistics();
 // a frame statistic, a pooled scale; nullopt for any other name.
 std::optional<ValueRange> value_range(const std::string& name);
 
+// Whether the truth's noise gives `name` a floor: a metric whose value is a mean of differences between
+// test and truth (the per-pixel errors, the temporal errors, flicker excess and lag, the pooled errors,
+// the glint histogram's distance). The truth's halves A and B, each of half its samples, differ by
+// sqrt(2) x sqrt(2) = 2 times the noise of the whole truth, so the whole truth's floor is half their
+// metric (noise_floor in metrics/frame_metrics.h). Ratios, densities and counts have no floor here.
+bool has_noise_floor(const std::string& name);
+
 // The groups of frame statistics (FrameMetrics) that a metrics list may name beside the per-pixel
 // metrics: "flicker" (flicker along the motion), "glints" (glint statistics), "pooled" (pooled error).
 // A list that names no group measures every group, as before groups could be named; a list that names

@@ -46,6 +46,10 @@ void add_measure_command(CLI::App& app, int& exit_code) {
   c->add_option("--reference", o->reference,
                 "reference SEQ: a folder of numbered frames, a pattern with %04d or ####, optionally :LAYER "
                 "(default: none; then only each test's own flicker_contrast)");
+  c->add_option("--reference-b", o->reference_b,
+                "SEQ of the reference's second half: --reference and this are two independent halves of the truth "
+                "(each of half its samples); the truth is their mean and their difference its noise floor "
+                "(default: none, no floor)");
   c->add_option("--test", *tests, "[NAME=]SEQ of a test sequence (repeat for several)")->required();
   c->add_option("--out", o->out_dir, "output folder (default: results/measure)");
   c->add_option("--motion", o->motion, "SEQ of motion vectors (default: estimated by optical flow)");

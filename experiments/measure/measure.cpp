@@ -148,10 +148,14 @@ struct FrameInput {
   std::shared_ptr<const Image> base_image;  // the reference (shared with `prepared`), or a copy of test 0 for flow
   std::optional<metrics::FrameMetrics::Reference> prepared;
   std::vector<std::shared_ptr<const metrics::FlickerReference>> own;
+  // Where the reference is given as two halves: half A prepared, and half B, measured against it for
+  // the noise floor (the reference above is then their mean).
+  std::optional<metrics::FrameMetrics::Reference> half_a;
+  std::shared_ptr<const Image> half_b;
 };
 
 struct Plan {
-  std::optional<FrameFiles> reference;
+  std::optional<FrameFiles> reference, reference_b;
   std::vector<FrameFiles> tests;
   std::vector<std::string> test_names;
   std::optional<Source> motion, depth;
@@ -160,6 +164,25 @@ struct Plan {
   std::vector<int> numbers;
   int width = 0, height = 0;
 };
+
+// The truth from its two halves: their mean, channel by channel (in CIE XYZ, where the mean of two
+// estimates of light is the estimate of their samples together).
+Image mean_of_halves(const Image& a, const Image& b) {
+  Image m = a;
+  for (size_t i = 0; i < m.data.size(); ++i) m.data[i] = 0.5f * (a.data[i] + b.data[i]);
+  return m;
+}
+
+// A defect in either half is a defect of the truth.
+metrics::PixelScan combined_scan(const metrics::PixelScan& a, const metrics::PixelScan& b) {
+  metrics::PixelScan s = a;
+  s.nan += b.nan;
+  s.pos_inf += b.pos_inf;
+  s.neg_inf += b.neg_inf;
+  s.infinite += b.infinite;
+  s.negative += b.negative;
+  return s;
+}
 
 // prev_forward: the vectors to the next frame of frame k - 1, where the files have them.
 FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm, const metrics::FrameMetrics& measure,
@@ -172,11 +195,22 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
     ColourFrame frame;  // its image moved to `base`
     std::shared_ptr<const Image> base;
     metrics::FrameMetrics::Reference prepared;
+    std::optional<metrics::FrameMetrics::Reference> half_a;
+    std::shared_ptr<const Image> half_b;
   };
   std::future<PreparedReference> ref;
   if (p.reference)
     ref = std::async(std::launch::async, [&] {
-      PreparedReference r{read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space), nullptr, {}};
+      PreparedReference r{read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space), nullptr, {}, {}, {}};
+      if (p.reference_b) {  // two halves: the truth is their mean, half A is kept for the floor
+        ColourFrame b = read_colour_frame(*p.reference_b, k, cm, metrics::kXyzD65Space);
+        auto a = std::make_shared<const Image>(std::move(r.frame.image));
+        r.frame.image = mean_of_halves(*a, b.image);
+        r.frame.scan = combined_scan(r.frame.scan, b.scan);
+        r.frame.read_ms += b.read_ms;
+        r.half_a = measure.prepare(a, false);
+        r.half_b = std::make_shared<const Image>(std::move(b.image));
+      }
       r.base = std::make_shared<const Image>(std::move(r.frame.image));
       r.prepared = measure.prepare(r.base, p.tests.size() > 1);
       return r;
@@ -202,6 +236,8 @@ FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm,
     in.reference = std::move(r.frame);
     in.base_image = std::move(r.base);
     in.prepared = std::move(r.prepared);
+    in.half_a = std::move(r.half_a);
+    in.half_b = std::move(r.half_b);
   } else {
     if (!in.has_vectors) in.base_image = std::make_shared<const Image>(in.tests[0].image);  // measured too: a copy
     for (const auto& t : in.tests)
@@ -270,6 +306,8 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       throw ConfigError("measure: give --motion SEQ or --motion-from, not both");
     if (!o.motion_from.empty() && o.motion_from != "reference" && o.motion_from != "test")
       throw ConfigError("--motion-from: '" + o.motion_from + "' is not allowed (reference or test)");
+    if (!o.reference_b.empty() && o.reference.empty())
+      throw ConfigError("--reference-b: the reference's second half needs its first: give --reference SEQ too");
     if (o.motion_from == "reference" && o.reference.empty())
       throw ConfigError("--motion-from reference: there is no --reference");
     if (!o.depth.empty() && o.motion.empty() && o.motion_from.empty())
@@ -314,6 +352,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       return f;
     };
     if (!o.reference.empty()) p.reference = colour_source("--reference", o.reference, o.reference_space);
+    if (!o.reference_b.empty()) p.reference_b = colour_source("--reference-b", o.reference_b, o.reference_space);
     std::set<std::string> names;
     for (const auto& t : o.tests) {
       const std::string name = t.name.empty() ? default_name(parse_sequence(t.seq, "--test")) : t.name;
@@ -393,6 +432,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       tests.push_back({{"name", p.test_names[i]}, {"frames", o.tests[i].seq}, {"space", p.tests[i].space}});
     source = {{"reference", o.reference},
               {"reference_space", p.reference ? p.reference->space : ""},
+              {"reference_b", o.reference_b},
               {"tests", tests},
               {"motion", o.motion},
               {"motion_from", o.motion_from},
@@ -415,6 +455,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     spec.reference.enabled = bool(p.reference);
     spec.reference.grid = 0;
     spec.reference.frames = o.reference;
+    spec.reference.frames_b = o.reference_b;
     spec.output.exr = false;
     spec.output.png = o.report;  // previews are for the report: a CI job with --no-report writes none
     spec.output.every = std::max(1, int((p.numbers.size() + 7) / 8));  // at most 8 previews a sequence
@@ -459,6 +500,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       if (!hashes.contains(path)) hashes[path] = file_content_hash(path);
   };
   if (p.reference) add_hashes(*p.reference);
+  if (p.reference_b) add_hashes(*p.reference_b);
   for (const auto& t : p.tests) add_hashes(t);
   if (p.motion) add_hashes(*p.motion);
   if (p.depth) add_hashes(*p.depth);
@@ -508,6 +550,12 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
   log << "measure: " << p.tests.size() << " test sequence(s)" << (p.reference ? " against a reference" : ", no reference")
       << ", frames " << p.numbers.front() << " to " << p.numbers.back() << " at " << p.width << "x" << p.height
       << "; motion " << motion_kind << " (" << motion_source << "); disocclusion: " << disocclusion << "\n";
+  if (p.reference_b)
+    log << "noise floor: the reference's two halves (--reference and --reference-b): the truth is their mean, "
+           "each metric's floor half their difference (frames.csv floor_*, summary.json references[].floor)\n";
+  else if (p.reference)
+    log << "no floor: the reference is one estimate; give it as two independent halves (--reference-b SEQ) for "
+           "its noise floor\n";
   if (motion_kind == "estimated")
     log << "note: no motion vectors given: flicker is measured along optical flow estimated from "
         << (p.reference ? "the reference" : "the first test") << ", marked \"motion\": \"estimated\"\n";
@@ -523,6 +571,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
 
   ImageWriter images(out_dir, plan, cm);
   std::vector<metrics::FlickerTracker> trackers(p.tests.size());
+  metrics::FlickerTracker half_tracker;  // half B along the motion against half A: the noise floor
   if (first_missing < count) {
     const int start = std::max(0, first_missing - 1);
     Progress progress(log, o.name, int(p.tests.size()) * (count - start));
@@ -555,6 +604,12 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       me.given = me.negated = me.flip_y = me.flip_x = nan;
       if (k > 0 && prev_base) me = metrics::motion_explained(prev_base->pq, base->pq, p.width, p.height, motion);
       const bool emit_reference = k >= first_missing;
+      metrics::NamedValues halves_metrics, floor;
+      if (in.half_b) {
+        if (k == 0) half_tracker.reset();
+        halves_metrics = measure.measure(*in.half_b, *in.half_a, motion, half_tracker);
+        floor = metrics::noise_floor(halves_metrics);
+      }
       if (in.reference && emit_reference) {
         ReferenceRecord rr;
         rr.reference = 0;
@@ -564,6 +619,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         rr.cached = false;
         rr.wall_ms = in.reference->read_ms;
         rr.gpu_ms = nan;
+        rr.halves_metrics = halves_metrics;
         for (RecordSink* s : std::initializer_list<RecordSink*>{journal.get(), &images}) s->reference(rr);
       }
       if (in.reference && !in.reference->scan.clean() && emit_reference)
@@ -601,6 +657,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         if (!t.scan.clean() || bad_ref)
           for (auto& [n, v] : rec.metrics)
             if (n.size() < 3 || n.compare(n.size() - 3, 3, "_px") != 0) v = nan;
+        rec.floor = floor;
         rec.metrics.emplace_back("motion_explained", me.given);
         rec.metrics.emplace_back("motion_explained_negated", me.negated);
         rec.metrics.emplace_back("motion_explained_flip_y", me.flip_y);
@@ -675,6 +732,17 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
         << " deltaE2000 " << std::setw(9) << mean_of("deltaE2000") << "  flicker_ratio " << std::setw(9)
         << mean_of("flicker_ratio") << "  temporal_error_mc " << std::setw(10) << mean_of("temporal_error_mc")
         << "  flicker_contrast " << std::setw(9) << mean_of("flicker_contrast") << "\n";
+  }
+  for (const auto& r : summary["references"]) {
+    if (!r.contains("floor")) {
+      log << "  no floor (the reference is one estimate: --reference-b SEQ gives its second half)\n";
+      continue;
+    }
+    log << "  floor (the truth's noise)";
+    for (const char* n : {"deltaE2000", "temporal_error_mc", "flicker_excess", "temporal_lag"})
+      if (r["floor"].contains(n) && r["floor"][n].is_number())
+        log << "  " << n << " " << std::setprecision(4) << r["floor"][n].get<double>();
+    log << "\n";
   }
   DefectCount defects;
   journal->replay(defects);

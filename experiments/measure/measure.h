@@ -31,6 +31,11 @@ struct MeasureSource {
 struct MeasureOptions {
   std::string reference;  // SEQ; "" = no reference (flicker_contrast of each test alone)
   std::string reference_space;  // its OCIO space ("" = space)
+  // SEQ of the reference's second half: the reference is then given as two independent estimates of the
+  // truth (half A = `reference`, half B this, each of half the samples, in the same space); the truth
+  // measured against is their mean (in CIE XYZ) and every metric of B against A gives its noise floor.
+  // "" = no halves: no floor.
+  std::string reference_b;
   std::vector<MeasureSource> tests;
   std::string out_dir;
   std::string motion;                       // SEQ of motion vectors

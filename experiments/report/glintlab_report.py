@@ -331,16 +331,39 @@ def variant_colors(names):
     return {v: cmap(0.05 + 0.9 * i / (n - 1)) for i, v in enumerate(names)}
 
 
-def pareto_front(points):
-    """points: [(x, y, name)] to minimise in both; returns the non-dominated
-    ones sorted by x."""
-    pts = sorted(points, key=lambda p: (p[0], p[1]))
-    front, best = [], math.inf
-    for p in pts:
-        if p[1] < best:
-            front.append(p)
-            best = p[1]
-    return front
+def pareto_front(points, floors=None):
+    """points: [(x, y, name)] to minimise in both; floors: {name: the noise floor of its y} (absent = 0).
+    Two errors closer than the larger of their floors are not ranked apart: q dominates p when it costs
+    no more and is not worse beyond the floors, and is cheaper or better beyond them. Returns the
+    non-dominated points sorted by x."""
+    floors = floors or {}
+
+    def dominates(q, p):
+        f = max(floors.get(q[2]) or 0.0, floors.get(p[2]) or 0.0)
+        return q[0] <= p[0] and q[1] <= p[1] + f and (q[0] < p[0] or q[1] < p[1] - f)
+
+    front = [p for p in points if not any(dominates(q, p) for q in points if q is not p)]
+    return sorted(front, key=lambda p: (p[0], p[1]))
+
+
+def floor_text(reference):
+    """The facts line's account of a truth's noise floor (summary.json references[].floor), or ""."""
+    floor = reference.get("floor") or {}
+    shown = [m for m in ("deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag")
+             if isinstance(floor.get(m), (int, float))]
+    return ("; its noise floor (half its halves' difference): " + ", ".join(
+        f"{esc(label_of(m))} {fmt(floor[m])}" for m in shown)) if shown else ""
+
+
+def floor_of(summary, variant_name, metric):
+    """The noise floor of `metric` of the truth `variant_name` is measured against (summary.json
+    references[].floor), or None; ratios have none."""
+    if metric in RATIO_METRICS:
+        return None
+    v = next((x for x in summary["variants"] if x["name"] == variant_name), None)
+    r = next((r for r in summary.get("references") or [] if v and r.get("name") == v.get("reference")), None)
+    f = ((r or {}).get("floor") or {}).get(metric)
+    return f if isinstance(f, (int, float)) and math.isfinite(f) else None
 
 
 def pareto_value(metric, m):
@@ -365,7 +388,8 @@ def pareto_points(summary, metric):
 
 def draw_pareto(ax, summary, metric, colors, markers, annotate):
     pts = pareto_points(summary, metric)
-    front = pareto_front([(p[0], p[1], p[2]) for p in pts])
+    floors = {p[2]: floor_of(summary, p[2], metric) for p in pts}
+    front = pareto_front([(p[0], p[1], p[2]) for p in pts], floors)
     on_front = {p[2] for p in front}
     if len(front) > 1:
         ax.plot([p[0] for p in front], [p[1] for p in front], "--", color="0.35", lw=1.2, zorder=1,
@@ -385,6 +409,9 @@ def draw_pareto(ax, summary, metric, colors, markers, annotate):
         opt = name in on_front
         ax.scatter([x], [y], s=64 if opt else 36, marker=markers[name], color=colors[name],
                    edgecolors="black" if opt else "none", linewidths=1.2, zorder=3 if opt else 2)
+        if floors.get(name):  # the truth's noise floor: errors closer than this are not ranked apart
+            ax.errorbar([x], [y], yerr=[floors[name]], fmt="none", ecolor=colors[name], elinewidth=1, capsize=2,
+                        alpha=0.7, zorder=1)
         if annotate or opt:
             px, py = norm(lx, min(nx), max(nx)), y / ymax
             k = sum(1 for qx, qy in placed if abs(qx - px) < 0.3 and abs(qy - py) < 0.08)
@@ -647,17 +674,12 @@ class Report:
         self.sections = []  # (id, title) of the sections written, for the navigation
 
     def floor_of(self, variant_name, metric):
-        """The noise floor of `metric` of the truth `variant_name` is measured against (summary.json
-        references[].floor), or None."""
-        v = next((x for x in self.variants if x["name"] == variant_name), None)
-        r = next((r for r in self.summary.get("references") or [] if v and r.get("name") == v.get("reference")), None)
-        f = (r or {}).get("floor", {}).get(metric)
-        return f if isinstance(f, (int, float)) and math.isfinite(f) else None
+        return floor_of(self.summary, variant_name, metric)
 
     def within_floor(self, pts, best, metric):
         """The variants whose figure lies within the truth's noise floor of the best one's (same truth)."""
         f = self.floor_of(best[2], metric)
-        if f is None or metric in RATIO_METRICS:
+        if f is None:
             return []
         ref = next(x for x in self.variants if x["name"] == best[2]).get("reference")
         return [p[2] for p in pts if p[2] != best[2] and abs(p[3] - best[3]) < f
@@ -695,15 +717,10 @@ class Report:
         for r in [r for r in s.get("references") or [] if not r.get("frames")]:
             g = stat(r.get("gpu_ms"))
             cost = f", {fmt(g)} GPU ms/frame" if g is not None else ""
-            floor = r.get("floor") or {}
-            shown = [m for m in ("deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag")
-                     if isinstance(floor.get(m), (int, float))]
-            floor_text = ("; its noise floor (half its halves' difference): " + ", ".join(
-                f"{esc(label_of(m))} {fmt(floor[m])}" for m in shown)) if shown else ""
             facts.append((f"reference “{esc(r.get('name'))}”",
                           f"{esc(r.get('spp'))} samples per pixel (stratified, box filter){cost}; "
                           f"{esc(r.get('frames_rendered', 0))} frames rendered, "
-                          f"{esc(r.get('frames_cached', 0))} from the cache" + floor_text))
+                          f"{esc(r.get('frames_cached', 0))} from the cache" + floor_text(r)))
         if s.get("command") == "measure":  # frames read from files (`glintlab measure`)
             me = s.get("motion_explained") or {}
             explained = ""
@@ -717,7 +734,12 @@ class Report:
             facts.append(("disocclusion", esc(s.get("disocclusion", "?"))))
             for r in s.get("references") or []:
                 if r.get("frames"):
-                    facts.append((f"reference “{esc(r.get('name'))}”", f"frames read from {esc(r['frames'])}"))
+                    halves = r.get("frames_b")
+                    facts.append((f"reference “{esc(r.get('name'))}”", f"frames read from {esc(r['frames'])}"
+                                  + (f" and {esc(halves)}, two halves of the truth, which is their mean"
+                                     if halves else "") + (floor_text(r) or "; <b>no floor</b>: the reference "
+                                     "was given as one estimate (<code>--reference-b SEQ</code> gives its second "
+                                     "half, and with it the noise floor of every figure)")))
         if stat(s.get("metric_ms_per_frame")) is not None:
             facts.append(("measuring", f"{fmt(stat(s['metric_ms_per_frame']))} ms per variant frame (CPU)"))
         facts.append(("run directory", esc(os.path.abspath(self.run_dir))))
@@ -814,7 +836,8 @@ class Report:
         return (head
                 + "<p>Each point is one variant: x is its mean GPU time per frame (all passes, GPU timestamps), y its "
                 "mean error against the reference over all frames. A variant is <i>Pareto-optimal</i> (ringed, joined "
-                "by the dashed line) when no other variant is both cheaper and better. Temporal stability is ranked "
+                "by the dashed line) when no other variant is at most as costly and better; two errors closer than "
+                "their truth's noise floor (the bars) count as equal, so the front does not rank noise. Temporal stability is ranked "
                 "by the <b>temporal error along the motion</b> (the change that does not match the truth's); the "
                 "at-a-glance list gives the best variant's flicker excess (change beyond the truth's: twinkling) and "
                 "lag (the truth's change it lacks: smooth but wrong) beside it. The flicker ratio stays in the table "

@@ -92,6 +92,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
     std::vector<metrics::FrameMetrics::Reference> prepared(m.references.size());
     std::vector<bool> ref_cached(m.references.size(), false);
     std::vector<metrics::PixelScan> ref_scan(m.references.size());  // references are scanned too
+    std::vector<metrics::NamedValues> ref_floor(m.references.size());
     if (work.motion[kk]) {
       in.samples = core::samples_for(spec.path, k, w, h, {glm::vec2(0.0f)});
       motion = std::move(m.motion.graph->execute(in).images.at(m.motion.output));
@@ -153,6 +154,9 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         if (k == 0 || cam.cut || !work.reference[r][kk - 1]) m.half_trackers[r].reset();
         rec.halves_metrics = m.measure->measure(*halves[1], m.measure->prepare(*halves[0], false), motion,
                                                 m.half_trackers[r]);
+        ref_floor[r] = metrics::noise_floor(rec.halves_metrics);
+        rec.half_a = &*halves[0];
+        rec.half_b = &*halves[1];
       }
       rec.image = &*img;
       ref_cached[r] = rec.cached;
@@ -212,6 +216,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         }
         rec.metrics.emplace_back("reference_nonfinite_px", double(rs.nan + rs.infinite));
         rec.metrics.emplace_back("reference_negative_px", double(rs.negative));
+        rec.floor = ref_floor[size_t(pv.reference)];
       }
       if (work.emit[i][kk]) {
         if (!rec.scan.clean()) {

@@ -20,19 +20,6 @@ namespace {
 
 nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
-// The noise floor of a metric whose value is a mean of differences between test and truth (per-pixel
-// errors, the temporal errors, flicker excess and lag, pooled errors): the truth's halves A and B,
-// each of half its samples, differ by sqrt(2) x sqrt(2) = 2 times the noise of the whole truth, so
-// the whole truth's floor is half their metric. Ratios, densities and counts have no floor here.
-bool is_difference_metric(const std::string& name) {
-  static const char* const kNames[] = {"deltaE2000", "deltaEITP", "flip", "temporal_error", "temporal_error_mc",
-                                       "flicker_excess", "temporal_lag", "flicker_excess_fixed", "pooled_error",
-                                       "glint_hist_emd_oct"};
-  for (const char* n : kNames)
-    if (name == n) return true;
-  return name.rfind("pooled_rms_", 0) == 0;
-}
-
 fs::path frame_path(const fs::path& dir, int frame, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
@@ -55,12 +42,14 @@ nlohmann::json taa_json(const core::TaaSettings& t) {
           {"disocclusion_tolerance", t.disocclusion_tolerance}};
 }
 
-// Collects what the journal holds for the schema: metric names (in order) and pass names (first seen).
+// Collects what the journal holds for the schema: metric and floor names (in order), pass names (first seen).
 struct RecordNames final : RecordSink {
-  std::vector<std::string> metrics, passes;
+  std::vector<std::string> metrics, passes, floors;
   void frame(const FrameRecord& r) override {
     if (metrics.empty())
       for (const auto& [n, v] : r.metrics) metrics.push_back(n);
+    if (floors.empty())
+      for (const auto& [n, v] : r.floor) floors.push_back(n);
     for (const auto& t : r.passes)
       if (std::find(passes.begin(), passes.end(), t.pass) == passes.end()) passes.push_back(t.pass);
   }
@@ -107,6 +96,8 @@ void SummaryWriter::reference(const ReferenceRecord& r) {
   ReferenceStats& s = references_.at(size_t(r.reference));
   for (const auto& [name, v] : r.halves_metrics)  // a temporal metric is undefined at a sequence's start
     if (!std::isnan(v)) s.halves[name].add(v);
+  for (const auto& [name, v] : metrics::noise_floor(r.halves_metrics))
+    if (!std::isnan(v)) s.floor[name].add(v);
   if (r.cached) {
     ++s.cached;
     return;
@@ -185,12 +176,11 @@ void SummaryWriter::finish() {
                     {"corrupt_entries_rebuilt", s.rebuilt},
                     {"gpu_ms", stats_json(s.gpu_ms)},
                     {"wall_ms", stats_json(s.wall_ms)}});
+    if (!spec.reference.frames_b.empty()) refs.back()["frames_b"] = spec.reference.frames_b;
     if (!s.halves.empty()) {
       nlohmann::json halves, floor;
-      for (const auto& [name, st] : s.halves) {
-        halves[name] = stats_json(st);
-        if (is_difference_metric(name)) floor[name] = num(0.5 * st.mean());
-      }
+      for (const auto& [name, st] : s.halves) halves[name] = stats_json(st);
+      for (const auto& [name, st] : s.floor) floor[name] = num(st.mean());
       refs.back()["halves"] = halves;
       refs.back()["floor"] = floor;
     }
@@ -248,7 +238,7 @@ nlohmann::json write_run_outputs(const fs::path& dir, const RunPlan& plan, const
   *report_status = 0;
   RecordNames names;
   for (const Journal* j : journals) j->replay(names);
-  const FrameSchema schema(names.metrics, names.passes);
+  const FrameSchema schema(names.metrics, names.passes, names.floors);
   CsvWriter csv(dir / "frames.csv", schema);
   SummaryWriter summary(dir / "summary.json", plan, schema, info);
   for (const Journal* j : journals) {
@@ -270,12 +260,12 @@ ImageWriter::ImageWriter(fs::path dir, const RunPlan& plan, const metrics::Color
   if (plan.spec->output.exr) chroma_ = cm.chromaticities(plan.spec->working_space);
 }
 
-void ImageWriter::save(const std::string& row, int frame, const Image& img, bool exr, bool png) {
+void ImageWriter::save(const std::string& row, int frame, const Image& img, bool exr, bool png, bool sheet) {
   const OutputSpec& out = plan_.spec->output;
   if (frame % out.every != 0) return;
   // The contact sheet is built from the PNGs on disk (so that resumed and
   // merged runs have one too): the first columns of every row get a PNG.
-  const bool tile = out.contact_sheet && frame / out.every < out.contact_sheet_columns;
+  const bool tile = sheet && out.contact_sheet && frame / out.every < out.contact_sheet_columns;
   png = png || tile;
   const fs::path dir = dir_ / row;
   if (exr || png) fs::create_directories(dir);
@@ -298,6 +288,10 @@ void ImageWriter::save(const std::string& row, int frame, const Image& img, bool
 
 void ImageWriter::reference(const ReferenceRecord& r) {
   save(r.name, r.frame, *r.image, plan_.spec->output.exr, plan_.spec->output.png);
+  if (plan_.spec->output.halves && r.half_a && r.half_b) {  // EXR only: they are for measuring
+    save(r.name + "-half-a", r.frame, *r.half_a, true, false, false);
+    save(r.name + "-half-b", r.frame, *r.half_b, true, false, false);
+  }
 }
 
 void ImageWriter::frame(const FrameRecord& r) {

@@ -70,6 +70,7 @@ class SummaryWriter final : public RecordSink {
     metrics::Statistics gpu_ms, wall_ms;
     int rendered = 0, cached = 0, rebuilt = 0;
     std::map<std::string, metrics::Statistics> halves;  // each metric of half B against half A
+    std::map<std::string, metrics::Statistics> floor;   // the noise floor of each metric that has one
   };
   std::filesystem::path path_;
   const RunPlan& plan_;
@@ -91,7 +92,7 @@ class ImageWriter final : public RecordSink {
   void finish() override;
 
  private:
-  void save(const std::string& row, int frame, const Image& img, bool exr, bool png);
+  void save(const std::string& row, int frame, const Image& img, bool exr, bool png, bool sheet = true);
   std::filesystem::path dir_;
   const RunPlan& plan_;
   const metrics::ColorManager& cm_;

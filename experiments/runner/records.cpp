@@ -60,7 +60,7 @@ constexpr long long kMaxIndex = 1LL << 30, kMaxCount = 1LL << 48;
 nlohmann::json to_json(const FrameRecord& r) {
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& t : r.passes) passes.push_back({t.pass, number(t.gpu_ms)});
-  return {{"type", "frame"},
+  nlohmann::json j = {{"type", "frame"},
           {"variant", r.variant},
           {"name", r.name},
           {"frame", r.frame},
@@ -74,6 +74,8 @@ nlohmann::json to_json(const FrameRecord& r) {
           {"metrics", values(r.metrics)},
           {"metric_cost_ms", values(r.metric_cost_ms)},
           {"reference_cached", r.reference_cached}};
+  if (!r.floor.empty()) j["floor"] = values(r.floor);
+  return j;
 }
 
 nlohmann::json to_json(const ReferenceRecord& r) {
@@ -104,6 +106,7 @@ FrameRecord frame_record_from_json(const nlohmann::json& j) {
   r.metrics = values(j.at("metrics"));
   r.metric_cost_ms = values(j.at("metric_cost_ms"));
   r.reference_cached = j.at("reference_cached").get<bool>();
+  if (j.contains("floor")) r.floor = values(j.at("floor"));
   return r;
 }
 

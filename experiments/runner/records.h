@@ -26,6 +26,8 @@ struct ReferenceRecord {
   // The truth's noise at half its samples: every metric of its half B against its half A (empty where
   // the truth has no halves: read from files, or rendered at factor 1).
   metrics::NamedValues halves_metrics;
+  const Image* half_a = nullptr;  // the halves themselves (where it has them), valid during the call
+  const Image* half_b = nullptr;
 };
 
 struct FrameRecord {
@@ -41,6 +43,9 @@ struct FrameRecord {
   metrics::PixelScan scan;                // NaN / Inf / negative pixels of the image
   metrics::NamedValues metrics;           // empty when the run does not measure
   metrics::NamedValues metric_cost_ms;    // wall time of each metric group
+  // The noise floor of each metric that has one, from the halves of this frame's truth
+  // (metrics::noise_floor); empty where the truth has no halves.
+  metrics::NamedValues floor;
   bool reference_cached = false;
   const Image* image = nullptr;           // scene-linear RGBA
 };

@@ -143,6 +143,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     m.name = spec.name;
     m.reference = spec.reference.frames;
     m.reference_space = spec.reference.frames_space;
+    m.reference_b = spec.reference.frames_b;
     for (const auto& v : spec.variants) m.tests.push_back({v.name, v.frames, v.frames_space});
     m.out_dir = opt.out_dir;
     m.motion = spec.frames_only.motion;

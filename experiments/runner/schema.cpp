@@ -61,6 +61,7 @@ std::string unit_of(const std::string& name) {
   if (name.size() > 4 && name.compare(name.size() - 4, 4, "_max") == 0) return unit_of(name.substr(0, name.size() - 4));
   if (name.rfind("pooled_bias_", 0) == 0 || name.rfind("pooled_rms_", 0) == 0) return "Y (block means)";
   if (name.rfind("gpu_ms_", 0) == 0) return "ms (GPU timestamps)";
+  if (name.rfind(kFloorPrefix, 0) == 0) return unit_of(name.substr(std::string(kFloorPrefix).size()));
   return "";
 }
 
@@ -72,7 +73,8 @@ std::string csv_number(double x) {
   return o.str();
 }
 
-FrameSchema::FrameSchema(const std::vector<std::string>& metric_names, const std::vector<std::string>& pass_names)
+FrameSchema::FrameSchema(const std::vector<std::string>& metric_names, const std::vector<std::string>& pass_names,
+                         const std::vector<std::string>& floor_names)
     : passes_(pass_names) {
   auto add = [&](const std::string& n, bool summarised, bool integer) {
     columns_.push_back({n, unit_of(n), summarised, integer});
@@ -89,6 +91,7 @@ FrameSchema::FrameSchema(const std::vector<std::string>& metric_names, const std
   add("negative_pixels", true, true);
   for (const auto& m : metric_names) add(m, true, m.size() > 3 && m.compare(m.size() - 3, 3, "_px") == 0);
   if (!metric_names.empty()) add("reference_cached", false, true);  // 1: the reference frame came from the cache
+  for (const auto& m : floor_names) add(kFloorPrefix + m, false, false);  // summary.json: references[].floor
 }
 
 double FrameSchema::value(const FrameRecord& r, const std::string& name) const {
@@ -104,6 +107,11 @@ double FrameSchema::value(const FrameRecord& r, const std::string& name) const {
   if (name == "nonfinite_pixels") return double(r.scan.nan + r.scan.infinite);
   if (name == "negative_pixels") return double(r.scan.negative);
   if (name == "reference_cached") return r.reference_cached ? 1.0 : 0.0;
+  if (name.rfind(kFloorPrefix, 0) == 0) {
+    for (const auto& [n, v] : r.floor)
+      if (kFloorPrefix + n == name) return v;
+    return nan;
+  }
   if (name.rfind("gpu_ms_", 0) == 0) {
     for (const auto& t : r.passes)
       if ("gpu_ms_" + t.pass == name) return t.gpu_ms;

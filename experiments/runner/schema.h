@@ -13,6 +13,8 @@
 namespace glintlab {
 
 constexpr const char* kSummarySchema = "glintlab-summary/1";
+// frames.csv's column of a metric's noise floor at that frame: "floor_deltaE2000", ...
+inline const std::string kFloorPrefix = "floor_";
 
 struct Column {
   std::string name;
@@ -24,8 +26,11 @@ struct Column {
 class FrameSchema {
  public:
   // metric_names: FrameMetrics::names() (empty when the run does not
-  // measure); pass_names: every pass of any variant (gpu_ms_<pass> columns).
-  FrameSchema(const std::vector<std::string>& metric_names, const std::vector<std::string>& pass_names);
+  // measure); pass_names: every pass of any variant (gpu_ms_<pass> columns);
+  // floor_names: the metrics whose truth's noise floor the records carry
+  // (floor_<metric> columns, after the metrics; empty where no truth has halves).
+  FrameSchema(const std::vector<std::string>& metric_names, const std::vector<std::string>& pass_names,
+              const std::vector<std::string>& floor_names = {});
 
   const std::vector<Column>& columns() const { return columns_; }
   // The CSV cells of a record, in column order (empty cell = no value; NaN

@@ -232,6 +232,7 @@ void ExperimentSpec::read_common(JsonReader& r, ExperimentSpec& s) {
     s.output.contact_sheet = out->get_bool("contact_sheet", false);
     s.output.contact_sheet_columns = out->get_int("contact_sheet_columns", 8, 1, 64);
     s.output.motion = out->get_bool("motion", false);
+    s.output.halves = out->get_bool("halves", false);
     out->finish();
   }
 }
@@ -254,6 +255,10 @@ ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s
   if (auto ref = r.optional_child("reference")) {
     if (!ref->has("frames")) ref->fail("frames", "an experiment without \"scene\" reads its reference from \"frames\": SEQ");
     s.reference.enabled = true;
+    if (ref->has("frames_b")) {  // the reference as two halves: the truth is their mean, their difference its floor
+      s.reference.frames_b = relative_to(file, ref->get_string("frames_b"));
+      if (s.reference.frames_b.empty()) ref->fail("frames_b", "expected a sequence, as \"frames\"");
+    }
     read_frame_source(*ref, file, &s.reference.frames, &s.reference.frames_space);
   }
   if (auto m = r.optional_child("motion")) {

@@ -71,6 +71,7 @@ struct ReferenceSpec {
   int grid = 16;  // grid x grid samples (16 x 16 by default)
   std::string frames;  // a frame source instead of a render: the SEQ (experiments/measure/)
   std::string frames_space;
+  std::string frames_b;  // frames-only: the reference's second half ("frames" the first; measure --reference-b)
 };
 
 // A frames-only experiment (no "scene"): every variant and the reference are frame sources, measured
@@ -95,6 +96,9 @@ struct OutputSpec {
   bool contact_sheet = false;  // DIR/contact_sheet.png: rows = variants (+ reference), columns = saved frames
   int contact_sheet_columns = 8;  // at most this many saved frames per row
   bool motion = false;  // DIR/motion/frame_NNNN.exr: the motion vectors flicker is measured along (`pixels`)
+  // DIR/<reference>-half-a/ and -half-b/frame_NNNN.exr: the truth's two halves (where it has them), what
+  // `measure --reference SEQ --reference-b SEQ` takes as a reference with its noise floor.
+  bool halves = false;
 };
 
 struct ExperimentSpec {

@@ -6,9 +6,12 @@
 // quarter as much of the better one's, in quadrature: 1.12 x the floor for noise alone), within a
 // factor of 2, on small versions of `default` (Kajs glints, a dunes flight) and
 // `glint-flicker-orbit` (an orbit over a wavy plane). A truth measured against itself scores 0,
-// below its floor. Real runs on lavapipe, validation on.
+// below its floor. The same truth given to `measure` as its two halves (`"output": {"halves": true}`,
+// then `--reference-b`, here as a frames-only experiment's "frames_b") has the same floor, and
+// frames.csv carries each frame's floor. Real runs on lavapipe, validation on.
 #include "experiments/runner/runner.h"
 
+#include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -49,7 +52,7 @@ void check_floor(const std::string& experiment, int width, int height, int frame
   e["resolution"] = {width, height};
   e["frames"] = frames;
   e["variants"] = json::array({e["variants"][0]});  // no-aa
-  e["output"] = {{"exr", true}, {"png", false}, {"every", 1}, {"motion", true}};
+  e["output"] = {{"exr", true}, {"png", false}, {"every", 1}, {"motion", true}, {"halves", true}};
   const int grid = e["reference"]["grid"];
   run(e, tmp.path(), "n");
   e["reference"]["grid"] = 2 * grid;
@@ -60,6 +63,11 @@ void check_floor(const std::string& experiment, int width, int height, int frame
                       {"motion", {{"frames", "n/motion"}, {"convention", "pixels"}}},
                       {"metrics", {"deltaE2000", "flip"}}};
   run(files, tmp.path(), "against");
+  json halves = files;  // the same truth from its two halves: their mean, and their difference its floor
+  halves["name"] = "halves";
+  halves["reference"] = {{"frames", "n/reference-half-a"}, {"frames_b", "n/reference-half-b"}};
+  halves["variants"] = {{{"name", "no-aa"}, {"frames", "n/no-aa"}}};
+  run(halves, tmp.path(), "halves");
   json self = files;
   self["reference"] = {{"frames", "n/reference"}};
   run(self, tmp.path(), "self");
@@ -77,6 +85,36 @@ void check_floor(const std::string& experiment, int width, int height, int frame
     EXPECT_GE(got, 0.5 * floor) << m;
     EXPECT_LE(got, 2.0 * floor) << m;
     EXPECT_LE(itself[m]["mean"].get<double>(), floor) << m << ": a truth against itself";
+  }
+
+  // A truth read as one estimate has no floor; read as its two halves, the floor the run measured (the
+  // same halves, the same motion: the same figures), and the variant's figures against their mean are
+  // the run's, to fp32 summation order (the truth sums every sample in one pass).
+  EXPECT_FALSE(read_json(tmp.path() / "against" / "summary.json")["references"][0].contains("floor"));
+  const json from_halves = read_json(tmp.path() / "halves" / "summary.json");
+  const json run_no_aa = read_json(tmp.path() / "n" / "summary.json")["variants"][0]["metrics"];
+  ASSERT_TRUE(from_halves["references"][0].contains("floor")) << from_halves["references"][0].dump();
+  for (const char* m : {"deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag"}) {
+    EXPECT_NEAR(from_halves["references"][0]["floor"][m].get<double>(), ref["floor"][m].get<double>(),
+                1e-9 * ref["floor"][m].get<double>()) << m;
+    const double run_v = run_no_aa[m]["mean"].get<double>();
+    EXPECT_NEAR(from_halves["variants"][0]["metrics"][m]["mean"].get<double>(), run_v, 1e-4 * run_v) << m;
+  }
+
+  // frames.csv: each frame's floor, whose mean over the frames is the summary's.
+  const auto rows = test::read_csv_rows(tmp.path() / "n" / "frames.csv");
+  ASSERT_EQ(rows.size(), size_t(frames));
+  for (const char* m : {"deltaE2000", "temporal_error_mc"}) {
+    double sum = 0;
+    int n = 0;
+    for (const auto& r : rows) {
+      const std::string& cell = r.at(std::string("floor_") + m);
+      if (cell.empty()) continue;  // a temporal metric at the sequence's start
+      sum += std::stod(cell);
+      ++n;
+    }
+    ASSERT_GT(n, 0) << m;
+    EXPECT_NEAR(sum / n, ref["floor"][m].get<double>(), 1e-6 * ref["floor"][m].get<double>()) << m;
   }
 }
 

@@ -303,3 +303,25 @@ TEST(Report, MissingPythonOrModuleIsExitCode4AndNamesThePackage) {
   }
   fs::remove_all(out);
 }
+
+// The Pareto front does not rank errors apart that lie within the truth's noise floor: a variant that
+// costs more and is better by less than the floor is not Pareto-optimal, one better beyond it is; with
+// no floor the front is the plain one. The report's own function, run by Python.
+TEST(Report, TheParetoFrontDoesNotRankWithinTheNoiseFloor) {
+  const test::TempDir tmp("report_pareto_floor");
+  const fs::path script = tmp.path() / "front.py";
+  write_text(script,
+             "import sys\n"
+             "sys.path.insert(0, sys.argv[1])\n"
+             "import glintlab_report as g\n"
+             "pts = [(1.0, 1.0, 'cheap'), (2.0, 0.95, 'close'), (3.0, 0.5, 'better')]\n"
+             "names = lambda f: ','.join(p[2] for p in f)\n"
+             "print(names(g.pareto_front(pts)))\n"
+             "print(names(g.pareto_front(pts, {'cheap': 0.1, 'close': 0.1, 'better': 0.1})))\n"
+             "print(names(g.pareto_front(pts, {'cheap': 0.6, 'close': 0.6, 'better': 0.6})))\n");
+  const fs::path out = tmp.path() / "out.txt";
+  const std::string cmd = "python3 " + script.string() + " " +
+                          (fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "report").string() + " > " + out.string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  EXPECT_EQ(read_text(out), "cheap,close,better\ncheap,better\ncheap\n");
+}

@@ -95,3 +95,37 @@ TEST(Schema, UnitsOfDerivedNames) {
   EXPECT_EQ(csv_number(INFINITY), "inf");
   EXPECT_EQ(csv_number(NAN), "");
 }
+
+// A truth with halves gives each frame's noise floor of the metrics that have one (half the metric of
+// its half B against its half A) as floor_<metric> columns after the metrics; ratios and counts have none.
+TEST(Schema, FloorColumnsCarryEachFramesTruthNoise) {
+  const glintlab::metrics::NamedValues halves = {
+      {"deltaE2000", 0.5}, {"flicker_ratio", 1.25}, {"temporal_error_mc", NAN}, {"flicker_valid_px", 97}};
+  const glintlab::metrics::NamedValues floor = glintlab::metrics::noise_floor(halves);
+  ASSERT_EQ(floor.size(), 2u);
+  EXPECT_EQ(floor[0].first, "deltaE2000");
+  EXPECT_EQ(floor[0].second, 0.25);
+  EXPECT_EQ(floor[1].first, "temporal_error_mc");
+  EXPECT_TRUE(std::isnan(floor[1].second));
+
+  const FrameSchema schema({"deltaE2000", "flicker_ratio", "flicker_valid_px"}, {"surface"},
+                           {"deltaE2000", "temporal_error_mc"});
+  const auto& cols = schema.columns();
+  ASSERT_GE(cols.size(), 2u);
+  EXPECT_EQ(cols[cols.size() - 2].name, "floor_deltaE2000");
+  EXPECT_EQ(cols.back().name, "floor_temporal_error_mc");
+  EXPECT_EQ(cols.back().unit, unit_of("temporal_error_mc"));
+  EXPECT_FALSE(cols.back().summarised);  // pooled in summary.json references[].floor, not as a variant's metric
+  FrameRecord r = record(0, 1);
+  r.floor = floor;
+  const auto row = schema.row(r);
+  EXPECT_EQ(row[row.size() - 2], "0.25");
+  EXPECT_EQ(row.back(), "");  // undefined at a sequence's start, as the metric itself
+  EXPECT_EQ(schema.row(record(0, 1)).back(), "");  // a record without floors (a truth read from files)
+
+  // The journal keeps them.
+  const FrameRecord back = glintlab::frame_record_from_json(glintlab::to_json(r));
+  ASSERT_EQ(back.floor.size(), 2u);
+  EXPECT_EQ(back.floor[0].second, 0.25);
+  EXPECT_TRUE(std::isnan(back.floor[1].second));
+}
