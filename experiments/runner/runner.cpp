@@ -89,6 +89,7 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
     spec.height = overrides["resolution"][1].get<int>();
   }
   if (overrides.contains("frames")) spec.frames = std::min(spec.frames, overrides["frames"].get<int>());
+  if (overrides.contains("reference_grid")) spec.reference.grid = overrides["reference_grid"].get<int>();
   if (overrides.contains("variants")) {
     std::vector<VariantSpec> chosen;
     std::set<std::string> seen;
@@ -112,9 +113,76 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
 }
 
 
+// The truth sized by its noise floor ("reference": {"floor": {METRIC: FRACTION}}): runs the experiment
+// (no images, no report) in DIR/sizing/grid-G from the experiment's grid on; where a metric's floor is
+// above FRACTION of the smallest value of it among the variants measured against that truth, the grid
+// grows by the ratio (the floor of a mean of differences falls as 1 / sqrt(samples), so as 1 / grid;
+// at least by one, at most to max_grid) and the experiment runs again. Sets *grid to the first grid that
+// meets every target (or max_grid) and *sizing to the account summary.json keeps as
+// "reference_sizing". Returns an exit code (0, or the sizing run's 2 or device failure).
+int size_reference(const RunOptions& opt, const ExperimentSpec& spec, std::ostream& log, int* grid,
+                   nlohmann::json* sizing) {
+  const ReferenceSpec& ref = spec.reference;
+  nlohmann::json steps = nlohmann::json::array();
+  bool met = false;
+  int g = ref.grid;
+  for (;;) {
+    RunOptions o = opt;
+    o.out_dir = (fs::path(opt.out_dir) / "sizing" / ("grid-" + std::to_string(g))).string();
+    o.report = false;
+    o.images = false;
+    o.reference_grid = g;
+    o.resume = opt.resume && fs::exists(fs::path(o.out_dir) / "records.jsonl");
+    log << "reference sizing: " << g << "x" << g << " samples per pixel, in " << o.out_dir << "\n";
+    const int status = run_experiment(o, log);
+    if (status == kExitBadInput) return status;
+    const nlohmann::json summary = read_json_file((fs::path(o.out_dir) / "summary.json").string());
+    double worst = 0;  // the largest floor / (fraction x smallest value) over metrics and truths
+    nlohmann::json step = {{"grid", g}, {"spp", g * g}, {"floor", nlohmann::json::object()},
+                           {"smallest", nlohmann::json::object()}};
+    for (const auto& [metric, fraction] : ref.floor_target)
+      for (const auto& r : summary.at("references")) {
+        const nlohmann::json floor = r.contains("floor") ? r["floor"].value(metric, nlohmann::json()) : nlohmann::json();
+        double smallest = std::numeric_limits<double>::infinity();
+        for (const auto& v : summary.at("variants"))
+          if (v.value("reference", "") == r.at("name").get<std::string>() && v["metrics"].contains(metric) &&
+              v["metrics"][metric]["mean"].is_number())
+            smallest = std::min(smallest, v["metrics"][metric]["mean"].get<double>());
+        const double f = floor.is_number() ? floor.get<double>() : std::numeric_limits<double>::infinity();
+        step["floor"][metric] = floor;
+        step["smallest"][metric] = std::isfinite(smallest) ? nlohmann::json(smallest) : nlohmann::json(nullptr);
+        const double ratio = smallest > 0 && std::isfinite(smallest) ? f / (fraction * smallest)
+                                                                     : std::numeric_limits<double>::infinity();
+        worst = std::max(worst, ratio);
+        log << "reference sizing: " << r.at("name").get<std::string>() << " at " << g << "x" << g << ": " << metric
+            << " floor " << f << ", smallest variant " << smallest << ", target " << fraction << " of it: "
+            << (ratio <= 1 ? "met" : "not met") << "\n";
+      }
+    step["met"] = worst <= 1;
+    steps.push_back(step);
+    if (worst <= 1) {
+      met = true;
+      break;
+    }
+    if (g >= ref.max_grid) {
+      log << "warning: reference sizing: the floor target is not met at max_grid " << ref.max_grid
+          << "; the run uses that grid (its floors are in summary.json)\n";
+      break;
+    }
+    const double next = std::isfinite(worst) ? std::ceil(g * worst) : double(ref.max_grid);
+    g = int(std::clamp(next, double(g + 1), double(ref.max_grid)));
+  }
+  *grid = g;
+  nlohmann::json target = nlohmann::json::object();
+  for (const auto& [metric, fraction] : ref.floor_target) target[metric] = fraction;
+  *sizing = {{"target", target}, {"max_grid", ref.max_grid}, {"grid", g}, {"met", met}, {"steps", steps}};
+  return kExitOk;
+}
+
 }  // namespace
 
-int run_experiment(const RunOptions& opt, std::ostream& log) {
+// run_experiment, with further summary.json keys (the reference sizing's account).
+static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::json& extra) {
   // ---- the experiment and this invocation's share of it
   nlohmann::json source, overrides = nlohmann::json::object();
   std::string file;
@@ -130,6 +198,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     }
     if (opt.max_frames > 0) overrides["frames"] = opt.max_frames;
     if (!opt.variants.empty()) overrides["variants"] = opt.variants;
+    if (opt.reference_grid > 0) overrides["reference_grid"] = opt.reference_grid;
     if (opt.shard_count < 1 || opt.shard_index < 0 || opt.shard_index >= opt.shard_count)
       throw ConfigError("--shard: expected k/n with 1 <= k <= n");
     spec = effective_spec(source, file, overrides);
@@ -181,6 +250,22 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   const bool measure = opt.measure && spec.reference.enabled;
   if (opt.measure && !spec.reference.enabled)
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";
+  nlohmann::json summary_extra = extra;
+  if (measure && !spec.reference.floor_target.empty() && opt.reference_grid == 0) {
+    if (opt.shard_count > 1) {
+      log << "error: " << file << ": reference.floor sizes the truth by whole runs; run it unsharded once, then "
+          << "shard with the \"grid\" it chose (summary.json reference_sizing.grid)\n";
+      return kExitBadInput;
+    }
+    int grid = 0;
+    nlohmann::json sizing;
+    if (const int status = size_reference(opt, spec, log, &grid, &sizing); status != kExitOk) return status;
+    RunOptions sized = opt;
+    sized.reference_grid = grid;
+    summary_extra["reference_sizing"] = sizing;
+    log << "reference sizing: the run uses " << grid << "x" << grid << " samples per pixel\n";
+    return run_with(sized, log, summary_extra);
+  }
 
   const metrics::ColorManager cm = load_color_manager(opt.ocio_config);
   try {
@@ -226,6 +311,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
     log << "; the full grid has " << 2 * size_t(spec.mesh.tessellation) * spec.mesh.tessellation << ")";
   }
   log << "\n";
+  if (!opt.images) spec.output.exr = spec.output.png = spec.output.contact_sheet = spec.output.motion = spec.output.halves = false;
   const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name, &log);
   const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);
   try {
@@ -253,7 +339,7 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   // ---- outputs, from the journal
   int report_status = kExitOk;
   const nlohmann::json summary =
-      write_run_outputs(out_dir, plan, {journal.get()}, RunInfo{ctx.info().name, cm.config_path(), 1}, images,
+      write_run_outputs(out_dir, plan, {journal.get()}, RunInfo{ctx.info().name, cm.config_path(), 1, summary_extra}, images,
                     opt.report, &report_status, log);
   print_table(log, summary);
   int status = report_status;  // a failed report is a failed run, unless the run's own defects say more
@@ -275,6 +361,8 @@ int run_experiment(const RunOptions& opt, std::ostream& log) {
   }
   return status;
 }
+
+int run_experiment(const RunOptions& opt, std::ostream& log) { return run_with(opt, log, nlohmann::json::object()); }
 
 // A journal header as `run` writes it, checked before merge reads its fields (a header is input: a
 // shard index of 6.7e32 must not be converted to int, a "file" that is a number must not throw).
@@ -298,6 +386,8 @@ void check_run_header(const nlohmann::json& h, const std::string& dir) {
                                     is_int(o["resolution"][0], 1, 16384) && is_int(o["resolution"][1], 1, 16384)))
     bad("\"overrides.resolution\" must be [w, h] in 1 ... 16384");
   if (o.contains("frames") && !is_int(o["frames"], 1, 1000000)) bad("\"overrides.frames\" must be a count");
+  if (o.contains("reference_grid") && !is_int(o["reference_grid"], 1, 64))
+    bad("\"overrides.reference_grid\" must be a grid in 1 ... 64");
   if (o.contains("variants")) {
     if (!o["variants"].is_array()) bad("\"overrides.variants\" must be an array of names");
     for (const auto& v : o["variants"])

@@ -25,6 +25,10 @@ struct RunOptions {
   int shard_index = 0, shard_count = 1;  // --shard k/n (k counted from 1 on the command line)
   bool resume = false;        // continue the run in out_dir (journal) instead of starting over
   bool report = true;         // write report.html at the end
+  // > 0: the truth's grid instead of the experiment's (the runs that size a truth by its noise floor,
+  // "reference": {"floor": ...}, and the run at the grid they chose; recorded as an override).
+  int reference_grid = 0;
+  bool images = true;         // false: no EXR or PNG (the sizing runs)
 };
 
 // Returns the process exit code (experiments/cli/exit_codes.h): 0 ok, 1 a

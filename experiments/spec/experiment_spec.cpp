@@ -182,11 +182,43 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
       read_frame_source(*ref, file, &s.reference.frames, &s.reference.frames_space);
     } else {
       s.reference.grid = ref->get_int("grid", 16, 1, 64);
+      if (auto fl = ref->optional_child("floor")) {
+        for (auto it = fl->json().begin(); it != fl->json().end(); ++it) {
+          if (!metrics::has_noise_floor(it.key()) || !metrics::value_range(it.key()))
+            fl->fail(it.key(), "not a metric with a noise floor (allowed: the per-pixel metrics deltaE2000, "
+                               "deltaEITP, flip; temporal_error, temporal_error_mc, flicker_excess, temporal_lag, "
+                               "flicker_excess_fixed; pooled_error, pooled_rms_<block>; glint_hist_emd_oct)");
+          s.reference.floor_target[it.key()] = fl->get_number(it.key(), 1e-3, 1.0);
+        }
+        if (s.reference.floor_target.empty())
+          ref->fail("floor", "name at least one metric: {\"temporal_error_mc\": 0.1} asks for a floor below 10 % of "
+                       "the smallest variant's value");
+        fl->finish();
+        s.reference.max_grid = ref->get_int("max_grid", 48, 2, 64);
+        if (s.reference.grid < 2)
+          ref->fail("grid", "a truth sized by \"floor\" starts at a grid of at least 2 (its two halves need "
+                            "2 x 2 samples)");
+        if (s.reference.max_grid < s.reference.grid)
+          ref->fail("max_grid", "the limit " + std::to_string(s.reference.max_grid) + " is below \"grid\" " +
+                                    std::to_string(s.reference.grid));
+      }
       ref->finish();
     }
   }
   read_common(r, s);
   r.finish();
+  for (const auto& [m, fraction] : s.reference.floor_target) {  // a floor of a metric the run measures
+    const auto per_pixel = metrics::metric_names();
+    const bool measured =
+        std::find(per_pixel.begin(), per_pixel.end(), m) == per_pixel.end()
+            ? (m == "glint_hist_emd_oct" ? s.metric_options.glints
+               : m.rfind("pooled_", 0) == 0 ? s.metric_options.pooled
+                                             : true)
+            : std::find(s.metrics.begin(), s.metrics.end(), m) != s.metrics.end();
+    if (!measured)
+      throw ConfigError(file + ": reference.floor." + m + ": the run does not measure " + m +
+                        "; add it to \"metrics\" (or its group) or size the truth by a metric it measures");
+  }
   return s;
 }
 
@@ -281,6 +313,18 @@ ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s
   s.frames = 0;  // what the sequences hold
   read_common(r, s);
   r.finish();
+  for (const auto& [m, fraction] : s.reference.floor_target) {  // a floor of a metric the run measures
+    const auto per_pixel = metrics::metric_names();
+    const bool measured =
+        std::find(per_pixel.begin(), per_pixel.end(), m) == per_pixel.end()
+            ? (m == "glint_hist_emd_oct" ? s.metric_options.glints
+               : m.rfind("pooled_", 0) == 0 ? s.metric_options.pooled
+                                             : true)
+            : std::find(s.metrics.begin(), s.metrics.end(), m) != s.metrics.end();
+    if (!measured)
+      throw ConfigError(file + ": reference.floor." + m + ": the run does not measure " + m +
+                        "; add it to \"metrics\" (or its group) or size the truth by a metric it measures");
+  }
   return s;
 }
 

@@ -38,6 +38,7 @@
 #include <nlohmann/json.hpp>
 
 #include <climits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,11 @@ struct ReferenceSpec {
   std::string frames;  // a frame source instead of a render: the SEQ (experiments/measure/)
   std::string frames_space;
   std::string frames_b;  // frames-only: the reference's second half ("frames" the first; measure --reference-b)
+  // "floor": {METRIC: FRACTION, ...}: a truth good enough instead of a sample count. The run starts at
+  // `grid` and adds samples until each named metric's noise floor is at most FRACTION of the smallest
+  // value any variant measured against that truth has, up to `max_grid` (experiments/runner/runner.cpp).
+  std::map<std::string, double> floor_target;
+  int max_grid = 48;
 };
 
 // A frames-only experiment (no "scene"): every variant and the reference are frame sources, measured

@@ -127,3 +127,59 @@ TEST(NoiseFloor, TheFloorPredictsTheTruthAgainstFourTimesItsSamplesOnTheDunesFli
 TEST(NoiseFloor, TheFloorPredictsTheTruthAgainstFourTimesItsSamplesOnTheOrbit) {
   check_floor("glint-flicker-orbit", 320, 180, 4);  // its own footprint (at 160x90 a pixel holds 4x the glints)
 }
+
+// "reference": {"floor": {...}}: the truth grows until the named metric's floor is at most the fraction
+// of the smallest variant value, each step recorded; the run uses the grid that met it.
+TEST(NoiseFloor, AFloorTargetSizesTheTruth) {
+  const test::TempDir tmp("noise_floor_target");
+  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "default.json");
+  e["resolution"] = {160, 90};
+  e["frames"] = 2;
+  e["variants"] = json::array({e["variants"][0]});  // no-aa
+  e["output"] = {{"exr", false}, {"png", false}};
+  e["reference"] = {{"grid", 2}, {"floor", {{"deltaE2000", 0.1}}}, {"max_grid", 32}};
+  run(e, tmp.path(), "sized");
+  const json s = read_json(tmp.path() / "sized" / "summary.json");
+  const json& sizing = s["reference_sizing"];
+  ASSERT_TRUE(sizing["met"].get<bool>()) << sizing.dump();
+  const int grid = sizing["grid"];
+  EXPECT_GT(grid, 2);
+  EXPECT_EQ(s["references"][0]["spp"], grid * grid);
+  const double floor = s["references"][0]["floor"]["deltaE2000"], value = s["variants"][0]["metrics"]["deltaE2000"]["mean"];
+  std::printf("sized truth: %dx%d, deltaE2000 floor %.4g against no-aa's %.4g (%zu steps)\n", grid, grid, floor, value,
+              sizing["steps"].size());
+  EXPECT_LE(floor, 0.1 * value);
+  const json& steps = sizing["steps"];
+  ASSERT_GE(steps.size(), 2u);
+  for (size_t i = 0; i < steps.size(); ++i) {
+    EXPECT_EQ(steps[i]["met"].get<bool>(), i + 1 == steps.size()) << steps.dump();
+    if (i > 0) {
+      EXPECT_GT(steps[i]["grid"].get<int>(), steps[i - 1]["grid"].get<int>());
+      EXPECT_LT(steps[i]["floor"]["deltaE2000"].get<double>(), steps[i - 1]["floor"]["deltaE2000"].get<double>());
+    }
+  }
+  EXPECT_EQ(steps.back()["grid"], grid);
+}
+
+TEST(NoiseFloor, AFloorTargetOfAMetricWithoutFloorOrNotMeasuredIsExitCode2) {
+  const test::TempDir tmp("noise_floor_target_bad");
+  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "default.json");
+  e["frames"] = 1;
+  auto expect_2 = [&](const json& reference, const std::string& words) {
+    e["reference"] = reference;
+    std::ofstream(tmp.path() / "bad.json") << e.dump(2);
+    RunOptions opt;
+    opt.experiment = (tmp.path() / "bad.json").string();
+    opt.out_dir = (tmp.path() / "out").string();
+    std::ostringstream log;
+    EXPECT_EQ(run_experiment(opt, log), 2) << reference.dump();
+    EXPECT_NE(log.str().find(words), std::string::npos) << log.str();
+    EXPECT_FALSE(fs::exists(tmp.path() / "out" / "records.jsonl")) << "nothing before the input is checked";
+  };
+  expect_2({{"grid", 4}, {"floor", {{"flicker_ratio", 0.1}}}}, "reference.floor.flicker_ratio");
+  expect_2({{"grid", 4}, {"floor", {{"deltaEITP", 0.1}}}}, "does not measure deltaEITP");
+  expect_2({{"grid", 4}, {"floor", {{"deltaE2000", 0}}}}, "reference.floor.deltaE2000");
+  expect_2({{"grid", 1}, {"floor", {{"deltaE2000", 0.1}}}}, "at least 2");
+  expect_2({{"grid", 8}, {"floor", {{"deltaE2000", 0.1}}}, {"max_grid", 4}}, "max_grid");
+  expect_2({{"grid", 8}, {"max_grid", 16}}, "max_grid");  // the limit belongs to a floor target
+}
