@@ -313,18 +313,6 @@ ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s
   s.frames = 0;  // what the sequences hold
   read_common(r, s);
   r.finish();
-  for (const auto& [m, fraction] : s.reference.floor_target) {  // a floor of a metric the run measures
-    const auto per_pixel = metrics::metric_names();
-    const bool measured =
-        std::find(per_pixel.begin(), per_pixel.end(), m) == per_pixel.end()
-            ? (m == "glint_hist_emd_oct" ? s.metric_options.glints
-               : m.rfind("pooled_", 0) == 0 ? s.metric_options.pooled
-                                             : true)
-            : std::find(s.metrics.begin(), s.metrics.end(), m) != s.metrics.end();
-    if (!measured)
-      throw ConfigError(file + ": reference.floor." + m + ": the run does not measure " + m +
-                        "; add it to \"metrics\" (or its group) or size the truth by a metric it measures");
-  }
   return s;
 }
 
