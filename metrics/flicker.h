@@ -38,8 +38,8 @@
 //   temporal_error    = mean |e_t - e_{t-1}| per pixel (all pixels, no motion), e = PQ(Y_T) - PQ(Y_R)
 //                       in PQ code values (Y = 1 at 100 cd/m^2): the error's change at a fixed pixel
 //   temporal_error_mc = the same along the motion (unmasked pixels): mean |e_t(p) - e_{t-1}(p - v)|
-//   frame_diff_ratio  = mean |ΔT| / mean |ΔR| at a fixed pixel in PQ (the former flicker ratio; it
-//                       measures content moving across pixels, kept for comparison only)
+//   frame_diff_ratio  = mean |ΔT| / mean |ΔR| at a fixed pixel in PQ (a ratio at a fixed pixel:
+//                       content moving across pixels counts as change; a diagnostic)
 // One-sided, at the eye's resolution (what a viewer agreed with; the ratio above is kept as a
 // diagnostic). The ratio differences full-resolution frames, and bilinear resampling of the previous
 // frame blurs a sub-pixel feature, so a sparkle moving exactly with the surface "changes" (a ratio of

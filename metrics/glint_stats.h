@@ -1,5 +1,5 @@
 // Glint statistics: how many glints, and how bright relative to their surroundings, compared between a
-// test and a reference image (DESIGN.md "Ground truth": a stochastic estimator must match the truth in
+// test and a reference image (a stochastic estimator must match the truth in
 // distribution, not per pixel).
 //
 // Luminance Y = channel 1 of an XYZ image; negative and NaN luminances count as 0 here (scan_pixels

@@ -65,7 +65,7 @@ struct MetricOptions {
   double psnr_peak = 1.0;
   // Where per-pixel metrics are measured: "" = scene-referred (CIE XYZ D65 of the scene values);
   // "DISPLAY/VIEW" (e.g. "sRGB/Standard") = display-referred, as that OCIO view shows the images
-  // (see metric_xyz in metrics/measurement_space.h).
+  // (see metric_xyz in metrics/color/measurement_space.h).
   std::string display_view;
   // The statistics groups measured besides flicker (set from the metrics list by select_metrics).
   bool glints = true;

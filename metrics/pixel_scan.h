@@ -1,4 +1,4 @@
-// NaN / Inf / negative scan of a frame (DESIGN.md "Numerical stability": the counts go into the CSV).
+// NaN / Inf / negative scan of a frame (the counts go into frames.csv: a bad pixel is counted, never averaged).
 // A pixel counts at most once per category, if any of its scanned channels qualifies; one pixel can be
 // in several categories (e.g. NaN in R and -Inf in G).
 #pragma once

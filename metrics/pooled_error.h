@@ -1,4 +1,4 @@
-// Error of pooled means at several scales: the statistical per-scale comparison of DESIGN.md "Ground truth".
+// Error of pooled means at several scales: a stochastic estimator compared with the truth scale by scale.
 // A stochastic glint estimator can realise different glints than the truth yet match it on average over
 // blocks; bias and energy of block means tell the two apart.
 //

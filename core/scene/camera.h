@@ -8,7 +8,7 @@
 // projects to p + jitter_px (so +x moves right, +y moves DOWN one row per unit).
 //
 // Winding: with this projection, triangles that are counter-clockwise seen from the front
-// (right-handed, as core/mesh.h builds them) are VK_FRONT_FACE_COUNTER_CLOCKWISE.
+// (right-handed, as core/scene/mesh.h builds them) are VK_FRONT_FACE_COUNTER_CLOCKWISE.
 #pragma once
 
 #include <glm/glm.hpp>

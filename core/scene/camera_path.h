@@ -7,7 +7,7 @@
 // Frame k is at t_k = k / fps, computed from the integer k (no accumulated drift).
 // The "path parameter" s = t / T with T = (frames - 1) / fps runs from 0 at the first frame to 1
 // at the last (s = 0 for a 1-frame path); orbit angles and dolly positions are functions of s.
-// Angles: azimuth is measured from +X towards +Z (the convention of core/environment.h),
+// Angles: azimuth is measured from +X towards +Z (the convention of core/scene/environment.h),
 // elevation/pitch upwards from the XZ plane.
 //
 //  keyframes: "interpolation": "linear" | "catmull_rom" (default "catmull_rom"),

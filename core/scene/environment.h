@@ -1,6 +1,6 @@
 // Environment light: a separate directional sun (Kajs sec. 4.2.1: "a separate directional light
 // source to model the sun") plus a sky radiance lat-long map WITHOUT the sun disk, and the sky's
-// cosine-weighted hemisphere integral as l <= 2 spherical harmonics (core/spherical_harmonics.h).
+// cosine-weighted hemisphere integral as l <= 2 spherical harmonics (core/scene/spherical_harmonics.h).
 //
 // Lat-long mapping (mirrored exactly in shaders/common/environment.glsl):
 //   direction d = (sin θ cos φ, cos θ, sin θ sin φ)   θ in [0, π] from +Y (zenith), φ azimuth from +X
@@ -57,7 +57,7 @@ struct Environment {
   Sun sun;
   LatLong sky;
   // Irradiance SH coefficients E_lm = Â_l L_lm (Ramamoorthi & Hanrahan 2001), order of
-  // core/spherical_harmonics.h, in sky.color_space; E(n) = Σ E_lm Y_lm(n). Zero until
+  // core/scene/spherical_harmonics.h, in sky.color_space; E(n) = Σ E_lm Y_lm(n). Zero until
   // compute_sh_irradiance() is called.
   std::array<glm::vec3, 9> sh_irradiance{};
 };
@@ -86,7 +86,7 @@ struct SkySpec {
   static SkySpec from_json(JsonReader& r);  // validates; calls r.finish()
 };
 
-// Preetham, Shirley & Smits 1999 sky (core/sky_preetham.h) as a lat-long in CIE XYZ, tagged
+// Preetham, Shirley & Smits 1999 sky (core/scene/sky_preetham.h) as a lat-long in CIE XYZ, tagged
 // "CIE-XYZ-D65" (the model's xyY is CIE 1931; its white point is taken as D65), zenith luminance
 // = sky_intensity. No sun disk in the map. Below the horizon: a Lambertian ground of albedo
 // `ground_albedo` lit by the sky dome only (L = ρ E_sky(+Y) / π; the sun is the separate light),

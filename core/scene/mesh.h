@@ -1,11 +1,11 @@
 // Procedural meshes of the scene: plane, wavy "dune" plane, (layered) sphere and a ridged-noise dune
-// height field (DESIGN.md "Scene"). CPU only; the renderer uploads `vertices`/`indices` as they are.
+// height field. CPU only; the renderer uploads `vertices`/`indices` as they are.
 //
 // Conventions shared by every mesh:
 //  - object space, right-handed, +Y up; lengths in scene units;
 //  - triangles are counter-clockwise seen from outside/above: for indices (a, b, c) the geometric
 //    normal cross(p_b - p_a, p_c - p_a) points to the same side as the vertex normals. With the
-//    Y-flipped projection of core/camera.h this is VK_FRONT_FACE_COUNTER_CLOCKWISE;
+//    Y-flipped projection of core/scene/camera.h this is VK_FRONT_FACE_COUNTER_CLOCKWISE;
 //  - `normal` is unit; `tangent.xyz` is unit, orthogonal to `normal` and points along d(position)/du;
 //    `tangent.w` = ±1 such that bitangent = tangent.w * cross(normal, tangent.xyz) points along
 //    d(position)/dv (MikkTSpace convention);

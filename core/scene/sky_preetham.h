@@ -2,7 +2,7 @@
 // all-weather sky distribution with turbidity-fitted coefficients for luminance Y and CIE 1931
 // chromaticity x, y (paper sec. 3.1 and appendix A.2). Sky only: no sun disk, no aerial
 // perspective. Valid for turbidity in [1.7, 10] (the paper's fit range) and the sun at or above
-// the horizon; directions below the horizon are the caller's business (core/environment.h).
+// the horizon; directions below the horizon are the caller's business (core/scene/environment.h).
 #pragma once
 
 #include <glm/glm.hpp>

@@ -1,6 +1,6 @@
 // The one definition of what a run writes per frame and per variant: every
 // column of frames.csv, with its unit, in order; summary.json takes its keys
-// and units from the same list (experiments/runner/summary_writer.h). Adding a
+// and units from the same list (experiments/runner/output_writers.h). Adding a
 // metric to metrics/frame_metrics.h adds its column here by name; its unit
 // comes from the table in schema.cpp.
 #pragma once

@@ -312,7 +312,7 @@ void add_sand_cases(std::vector<Case>& cases) {
                      double u = d.U();
                      d.dist = u < 0.3 ? 1e6 : (u < 0.6 ? d.sp.sigmoid_b * (1 + 1e-3 * d.N()) : log_uniform(d.rng, 1e-3, 1e6));
                    },
-                   1e-3, false, "sigmoid a up to 1e4 (1e3 the issue's), b up to 1e6, distances up to 1e6 and near b"});
+                   1e-3, false, "sigmoid a up to 1e4, b up to 1e6, distances up to 1e6 and near b"});
   specs.push_back({"sand.sun-1e6", true, kAllModels,
                    [](Draw& d) {
                      d.L_i = vec3(1e6, 1e6 * d.U(), 1e6);

@@ -1,5 +1,5 @@
-// `glintlab stress`: the numerical-stability suite (the issue "Numerical
-// stability on stiff and extreme cases"). Every case drives the real shader
+// `glintlab stress`: the numerical-stability suite (stiff and extreme
+// inputs). Every case drives the real shader
 // code on extreme inputs -- through the renderer (core::SurfaceRenderer,
 // core::FrameGraph, build_variant, core::TaaPass) at a small resolution, or
 // through the compute harness (core::run_compute) against the fp64 twins of

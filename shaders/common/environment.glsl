@@ -1,6 +1,6 @@
 // Environment light lookups: sky radiance from the lat-long map and the Kajs eq. 4.2 sky term
-// L_sky^Ω from l <= 2 irradiance spherical harmonics. Mirrors core/environment.h and
-// core/spherical_harmonics.h exactly.
+// L_sky^Ω from l <= 2 irradiance spherical harmonics. Mirrors core/scene/environment.h and
+// core/scene/spherical_harmonics.h exactly.
 //
 // REQUIREMENTS on the including shader, declared BEFORE `#include "common/environment.glsl"`:
 //   - `vec4 env_sh[9]`  (e.g. a member of its uniform block; .rgb = irradiance coefficients
@@ -36,7 +36,7 @@ vec3 env_radiance(vec3 dir, float lod) {
 #endif
 
 // Irradiance E(n) = Σ E_lm Y_lm(n) (Ramamoorthi & Hanrahan 2001 eq. 7), basis order of
-// core/spherical_harmonics.h, clamped to >= 0.
+// core/scene/spherical_harmonics.h, clamped to >= 0.
 vec3 env_sh_irradiance(vec3 n) {
   vec3 d = safe_normalize(n, vec3(0.0, 1.0, 0.0));  // a zero normal reads the zenith
   float x = d.x, y = d.y, z = d.z;

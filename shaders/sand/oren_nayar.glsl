@@ -15,7 +15,7 @@
 // horizon; the floor on cos turns the jump into a ramp of slope
 // B / OREN_NAYAR_MIN_COS over cos_i in [0, OREN_NAYAR_MIN_COS], and the fp32
 // cosines (dot products, ~1.2e-7 absolute) move the value by that slope
-// times 1.2e-7. At 1e-6 (before the stress suite) that was up to 1.2e-2
+// times 1.2e-7. A floor of 1e-6 would give up to 1.2e-2
 // absolute (A + B ~ 1: 1 % of the diffuse at a grazing sun; measured 1.25e-2
 // by `glintlab stress`, math.oren-nayar-0-90deg); at 1e-4 it is 1.2e-4 and
 // the model differs from the exact one only within 1e-4 rad (0.006 deg) of

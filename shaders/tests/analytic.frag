@@ -1,7 +1,7 @@
 #version 450
 // Test shader: writes an analytic function of the interpolated world position
 // and the pixel centre, for the fp64 pixel-by-pixel comparison in
-// tests/core_renderer.cpp. rgb = world position x, z and
+// tests/core/render/renderer.cpp. rgb = world position x, z and
 // f = exp(-0.1 |x|) * (1 + 0.5 sin(3 x.x) cos(2 x.z)); alpha = weight.
 #include "common/frame.glsl"
 

@@ -1,6 +1,6 @@
 #version 450
 // GPU harness for the SH irradiance of shaders/common/environment.glsl
-// (tests/core_environment_gpu.cpp). Inputs: 27 floats = the nine E_lm (rgb)
+// (tests/core/scene/environment_gpu.cpp). Inputs: 27 floats = the nine E_lm (rgb)
 // shared by every item, then 3 floats (a normal, not necessarily unit) per
 // item. Outputs per item: env_sh_irradiance(n).rgb, env_irradiance(n).rgb.
 #extension GL_GOOGLE_include_directive : require

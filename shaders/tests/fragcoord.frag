@@ -1,6 +1,6 @@
 #version 450
 // Test shader: writes exactly representable functions of the pixel index, so
-// readback can be compared bit for bit (tests/core_renderer.cpp).
+// readback can be compared bit for bit (tests/core/render/renderer.cpp).
 #include "common/frame.glsl"
 #include "common/surface_interface.glsl"
 layout(location = 0) out vec4 out_color;

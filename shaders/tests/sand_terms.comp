@@ -1,5 +1,5 @@
 #version 450
-// GPU harness for the sand material terms (tests/core_sand_material.cpp):
+// GPU harness for the sand material terms (tests/core/material/sand_material.cpp):
 // one input record of SAND_IN_STRIDE floats per item (surface, light and a
 // full parameter set), one output record of SAND_OUT_STRIDE floats with
 // every term of SandTerms, the sand_shade() result (under the SAND_* defines

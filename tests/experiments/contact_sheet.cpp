@@ -1,4 +1,4 @@
-// make_contact_sheet (experiments/contact_sheet.h): the documented layout, tile placement, mean
+// make_contact_sheet (experiments/runner/contact_sheet.h): the documented layout, tile placement, mean
 // preservation of the box downscale, labels staying out of tiles, and input errors.
 #include <gtest/gtest.h>
 

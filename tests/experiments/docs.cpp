@@ -159,3 +159,65 @@ TEST(Docs, EveryCommandsHelpListsTheReadmesOptionsAndDefaults) {
       EXPECT_TRUE(known.count(n)) << "the README lists " << n << " for `glintlab " << c << "`; its --help does not";
   }
 }
+
+namespace {
+
+// The source and documentation files whose comments and text name repository paths.
+std::vector<fs::path> documented_files() {
+  static const std::set<std::string> kExt = {".h", ".cpp", ".glsl", ".comp", ".frag", ".vert", ".py", ".sh", ".md"};
+  std::vector<fs::path> out;
+  for (auto it = fs::recursive_directory_iterator(kRoot); it != fs::recursive_directory_iterator(); ++it) {
+    const std::string name = it->path().filename().string();
+    const fs::path rel = fs::relative(it->path(), kRoot);
+    if (it->is_directory() && (name == ".git" || name.rfind("build", 0) == 0 || name == "cache" ||
+                               rel == "tests/data" || rel == "tests/fuzz/corpus" || rel == "results")) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_regular_file() && (kExt.count(it->path().extension().string()) || name == "CMakeLists.txt"))
+      out.push_back(it->path());
+  }
+  return out;
+}
+
+// What a reader reads of a file: a README whole; of code, its comments (// and # to the line's end).
+std::string prose_of(const fs::path& f) {
+  const std::string text = read_text(f);
+  if (f.extension() == ".md") return text;
+  const bool hash = f.extension() == ".py" || f.extension() == ".sh" || f.filename() == "CMakeLists.txt";
+  std::string out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t at = line.find(hash ? "#" : "//");
+    if (at != std::string::npos) out += line.substr(at) + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+// Every repository path a README or a code comment names exists (relative to the repository, to the
+// file's folder, or to shaders/ for shader names), and none points outside the repository.
+TEST(Docs, EveryPathNamedInAReadmeOrACommentExists) {
+  static const std::regex path_re(
+      R"((?:^|[^\w/.-])((?:core|experiments|shaders|metrics|tests|docs)/[A-Za-z0-9_./+-]*[A-Za-z0-9_]))");
+  static const std::set<std::string> kExt = {".h", ".cpp", ".glsl", ".comp", ".frag", ".vert", ".py",
+                                             ".sh", ".md", ".json", ".png", ".txt"};
+  size_t paths = 0;
+  for (const fs::path& f : documented_files()) {
+    const std::string prose = prose_of(f);
+    for (const char* outside : {"DESIGN.md", "../shared", "TOOLCHAIN-FACTS", "ANCHORS.md", "STYLE.md"})
+      EXPECT_EQ(prose.find(outside), std::string::npos) << f << " points outside the repository: " << outside;
+    for (auto it = std::sregex_iterator(prose.begin(), prose.end(), path_re); it != std::sregex_iterator(); ++it) {
+      const std::string p = (*it)[1];
+      const size_t end = size_t(it->position(1) + it->length(1));
+      if (end < prose.size() && std::string("<*%#{").find(prose[end]) != std::string::npos) continue;  // a pattern
+      if (!kExt.count(fs::path(p).extension().string())) continue;  // a folder or a word, not a file
+      ++paths;
+      EXPECT_TRUE(fs::exists(kRoot / p) || fs::exists(f.parent_path() / p) || fs::exists(kRoot / "shaders" / p))
+          << fs::relative(f, kRoot) << " names " << p << ", which does not exist";
+    }
+  }
+  EXPECT_GE(paths, 100u);
+}

@@ -99,7 +99,7 @@ TEST(Runner, RunWritesEveryMetricForEveryFrameAndVariant) {
   for (const auto& e : fs::directory_iterator(dir / "out"))  // atomic writes leave no temporaries
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
   // Contact sheet: rows reference, no-aa, ssaa; columns the saved frames 0 and 2 (64x36 tiles,
-  // 4 px gaps, 20 px labels; layout of experiments/contact_sheet.h).
+  // 4 px gaps, 20 px labels; layout of experiments/runner/contact_sheet.h).
   Image sheet = metrics::read_image((dir / "out" / "contact_sheet.png").string());
   EXPECT_EQ(sheet.width, 4 + 2 * (64 + 4));
   EXPECT_EQ(sheet.height, 4 + 3 * (20 + 36 + 4));

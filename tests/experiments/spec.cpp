@@ -1,4 +1,4 @@
-// ExperimentSpec::from_json / load (experiments/experiment_spec.h): malformed experiment files are
+// ExperimentSpec::from_json / load (experiments/spec/experiment_spec.h): malformed experiment files are
 // rejected with a ConfigError that names the file and the key path; every shipped experiment loads;
 // a minimal spec gets the documented defaults.
 #include "tests/support/temp_dir.h"

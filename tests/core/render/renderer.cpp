@@ -147,7 +147,7 @@ TEST(Renderer, AnalyticShaderMatchesFp64PixelByPixel) {
   double max_pos_err = 0, max_f_err = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      // Pixel centre in NDC (pixel convention of core/camera.h), ray to the plane y = 0.
+      // Pixel centre in NDC (pixel convention of core/scene/camera.h), ray to the plane y = 0.
       double nx = (x + 0.5) / w * 2.0 - 1.0, ny = (y + 0.5) / h * 2.0 - 1.0;
       glm::dvec4 a = inv * glm::dvec4(nx, ny, 0.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
       glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;

@@ -1,6 +1,6 @@
 // The GLSL SH irradiance of shaders/common/environment.glsl (env_sh_irradiance, env_irradiance,
 // Kajs eq. 4.2 via Ramamoorthi & Hanrahan 2001 eq. 7) against the C++ evaluation of
-// core/spherical_harmonics.h, on lavapipe with validation on (shaders/tests/env_sh.comp).
+// core/scene/spherical_harmonics.h, on lavapipe with validation on (shaders/tests/env_sh.comp).
 #include "core/vk/compute_harness.h"
 #include "core/scene/environment.h"
 #include "core/scene/spherical_harmonics.h"
@@ -23,7 +23,7 @@ namespace {
 
 constexpr size_t kOut = 6;  // E.rgb, env_irradiance.rgb per item (env_sh.comp)
 
-// max over the unit sphere of |Y_k| (basis of core/spherical_harmonics.h): |xy|, |yz|, |xz| and
+// max over the unit sphere of |Y_k| (basis of core/scene/spherical_harmonics.h): |xy|, |yz|, |xz| and
 // |x² - y²| peak at 1/2 and 1, |3z² - 1| at 2.
 constexpr double kYMax[9] = {0.282094791773878, 0.488602511902920, 0.488602511902920,
                              0.488602511902920, 1.092548430592079 * 0.5, 1.092548430592079 * 0.5,
