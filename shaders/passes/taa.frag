@@ -344,23 +344,48 @@ bool same_surface(vec4 near, vec2 u, float tol) {
 }
 #endif
 
-void main() {
-  g_size = ivec2(size_alpha_gamma.xy);
-  ivec2 p = ivec2(gl_FragCoord.xy);  // the pixel: the viewport is the image
-  float alpha = size_alpha_gamma.z, gamma = size_alpha_gamma.w;
-  bool valid = history_jitter.x > 0.5;
+// ---- steps 1 and 3: the current 3x3 neighbourhood
+struct Neighbourhood {
+  vec3 cur;          // the centre, HDR-mapped, in box space
+  vec3 lo, hi;       // the min/max box of the 3x3
+  vec3 mean, sigma;  // their mean and standard deviation (the variance clamp)
+  vec4 mc;           // the centre's motion texel
+  vec2 v;            // the motion TAA_VELOCITY chose
+  vec4 near;         // the motion texel of the nearest surface of the 3x3 (TAA_DISOCCLUSION; z = 0: none)
+};
 
-  // ---- current neighbourhood (HDR-mapped, in box space) and motion
-  vec4 centre_px = fetch(color_tex, p);
-#if TAA_GLINT
-  vec4 glint_px = fetch(glint_tex, p);
-  float share = clamp(glint_px.a, 0.0, 1.0);  // NaN -> 0: no glint-aware change where the layer is undefined
-#endif
-#if TAA_GLINT_LAYER
-  vec3 centre_rgb = centre_px.rgb - glint_px.rgb;
-#else
-  vec3 centre_rgb = centre_px.rgb;
-#endif
+// Mean and standard deviation of the neighbourhood (the variance clamp), in two passes about the mean,
+// on samples scaled by a power of two that brings the largest to [1/2, 1] (to [1, 4] beyond 2^126).
+// The one-pass form m2/9 - mean^2 cancels to fp32 rounding noise in flat regions (a box 1e-3 of the
+// mean wide where it should be 1e-5: taa.variance-flat-regions, 6.2e-4 relative error against the
+// fp64 resolve) and overflows beyond 1.8e19 (sigma NaN, a collapsed box on lavapipe:
+// taa.huge-current, error x261).
+void moments(vec3 nb[9], vec3 lo, vec3 hi, out vec3 mean_out, out vec3 sigma_out) {
+  float big = max(max(max(abs(lo.x), abs(lo.y)), abs(lo.z)), max(max(abs(hi.x), abs(hi.y)), abs(hi.z)));
+  // 2^-e, e in [-126, 126], built from its bits (exp2(-126) may come out
+  // denormal and be flushed to 0): the scale and its inverse are normal fp32
+  int e = 0;
+  if (big > 0.0 && !isinf(big)) frexp(big, e);
+  float scale = uintBitsToFloat(uint(127 - clamp(e, -126, 126)) << 23);
+  // `precise`: the compiler may not factor the scale out of the sums
+  // (a s + b s -> (a + b) s, which NIR does to inexact arithmetic).
+  precise vec3 mean = vec3(0.0);
+  for (int k = 0; k < 9; ++k) mean += nb[k] * scale;
+  mean /= 9.0;
+  precise vec3 var = vec3(0.0);
+  for (int k = 0; k < 9; ++k) {
+    precise vec3 d = nb[k] * scale - mean;
+    var += d * d;
+  }
+  precise vec3 sigma = sqrt(var / 9.0) / scale;
+  mean /= scale;
+  mean_out = mean;
+  sigma_out = sigma;
+}
+
+// The 3x3 around p: its box, its moments, the motion to follow and the nearest surface.
+Neighbourhood neighbourhood(ivec2 p, vec3 centre_rgb) {
+  Neighbourhood nh;
   vec3 cur = box_colour(centre_rgb);
   vec3 lo = cur, hi = cur;
   vec3 nb[9];
@@ -368,10 +393,8 @@ void main() {
   vec2 v = mc.xy;
   float best_d = mc.z > 0.0 ? mc.z : 3.4e38, best_len = dot(mc.xy, mc.xy);
   nb[4] = cur;  // the centre: its colour and motion are fetched above (on llvmpipe a fetch is ~3 % of the resolve)
-#if TAA_DISOCCLUSION
   vec4 near = mc;  // the nearest surface of the 3x3 (the centre first: ties keep it)
   if (!(near.z > 0.0)) near = vec4(0.0);
-#endif
 #if TAA_QUAD_SHARE
   ivec2 out_dir = 2 * (p & 1) - 1;  // away from the centre of this pixel's quad
   vec3 qc[3][3];
@@ -404,43 +427,128 @@ void main() {
       if (mo.z > 0.0 && (!(near.z > 0.0) || mo.z < near.z)) near = mo;
 #endif
     }
-  // Mean and standard deviation of the neighbourhood (the variance clamp), in
-  // two passes about the mean, on samples scaled by a power of two that brings
-  // the largest to [1/2, 1] (to [1, 4] beyond 2^126). The one-pass form m2/9 - mean^2 (before the
-  // stress suite) cancels to fp32 rounding noise in flat regions (a box 1e-3 of
-  // the mean wide where it should be 1e-5: taa.variance-flat-regions, 6.2e-4
-  // relative error against the fp64 resolve) and overflows beyond 1.8e19
-  // (sigma NaN, a collapsed box on lavapipe: taa.huge-current, error x261).
-  float big = max(max(max(abs(lo.x), abs(lo.y)), abs(lo.z)), max(max(abs(hi.x), abs(hi.y)), abs(hi.z)));
-  // 2^-e, e in [-126, 126], built from its bits (exp2(-126) may come out
-  // denormal and be flushed to 0): the scale and its inverse are normal fp32
-  int e = 0;
-  if (big > 0.0 && !isinf(big)) frexp(big, e);
-  float scale = uintBitsToFloat(uint(127 - clamp(e, -126, 126)) << 23);
-  // `precise`: the compiler may not factor the scale out of the sums
-  // (a s + b s -> (a + b) s, which NIR does to inexact arithmetic).
-  precise vec3 mean = vec3(0.0);
-  for (int k = 0; k < 9; ++k) mean += nb[k] * scale;
-  mean /= 9.0;
-  precise vec3 var = vec3(0.0);
-  for (int k = 0; k < 9; ++k) {
-    precise vec3 d = nb[k] * scale - mean;
-    var += d * d;
-  }
-  precise vec3 sigma = sqrt(var / 9.0) / scale;
-  mean /= scale;
+  moments(nb, lo, hi, nh.mean, nh.sigma);
+  nh.cur = cur;
+  nh.lo = lo;
+  nh.hi = hi;
+  nh.mc = mc;
+  nh.v = v;
+  nh.near = near;
+  return nh;
+}
 
-  // ---- reprojection and validity
-  vec2 q = vec2(p) + 0.5 - v;
+// ---- step 3: the history rectified against the box (TAA_CLAMP); the variance clamp's box becomes the
+// box the feedback reads.
+vec3 rectify(vec3 raw, inout Neighbourhood nh, float gamma) {
+  vec3 h = raw;
+#if TAA_CLAMP == CLAMP_MINMAX
+  h = clamp(raw, nh.lo, nh.hi);
+#elif TAA_CLAMP == CLAMP_CLIP
+  h = clip_to_box(raw, nh.lo, nh.hi);
+#elif TAA_CLAMP == CLAMP_VARIANCE
+  vec3 vlo = nh.mean - gamma * nh.sigma, vhi = nh.mean + gamma * nh.sigma;
+  nh.lo = vlo;
+  nh.hi = vhi;
+  h = clamp(raw, vlo, vhi);
+#endif
+  return h;
+}
+
+// ---- step 4: the weight of the current frame (TAA_FEEDBACK).
+float feedback(vec3 cur, vec3 h, vec3 lo, vec3 hi, float alpha) {
+#if TAA_FEEDBACK == FEEDBACK_LUMA
+  float L0 = space_luma(cur), L1 = space_luma(h);
+  float k = 1.0 - abs(L0 - L1) / max(max(L0, L1), 0.2);
+  return 1.0 - mix(0.88, 0.97, k * k);
+#elif TAA_FEEDBACK == FEEDBACK_KARIS
+  float hl = space_luma(h), blo = space_luma(lo), bhi = space_luma(hi);
+  float d = min(abs(hl - blo), abs(bhi - hl)), range = max(bhi - blo, 0.0);
+  return d + range > 0.0 ? clamp(alpha * d / (d + range), 0.0, 1.0) : alpha;
+#else
+  return alpha;
+#endif
+}
+
+#if TAA_ANTI_FLICKER
+// Luma instability (FSR2; UE5 TSR ShadingRejection.Flickering): the last three lumas of this surface
+// point and the current one; where successive changes alternate in sign and are large against the
+// luma, the pixel oscillates and keeps more of its unrectified history. Returns the lumas to keep.
+vec4 anti_flicker(vec2 q, vec3 cur, vec3 raw, inout vec3 h, inout float a) {
+  vec4 lh = texelFetch(luma_tex, ivec2(clamp(floor(q), vec2(0.0), vec2(g_size - 1))), 0);
+  float Lc = space_luma(cur);
+  float d1 = lh.y - lh.x, d2 = lh.z - lh.y, d3 = Lc - lh.z;
+  float big = 0.1 * max(max(lh.x, lh.y), max(lh.z, Lc)) + 1e-6;
+  float alternations = (d1 * d2 < 0.0 && min(abs(d1), abs(d2)) > big ? 1.0 : 0.0) +
+                       (d2 * d3 < 0.0 && min(abs(d2), abs(d3)) > big ? 1.0 : 0.0);
+  float s = lh.w >= 3.0 ? 0.5 * alternations : 0.0;  // needs three remembered lumas
+  h = mix(h, raw, s);
+  a *= 1.0 - 0.5 * s;
+  return vec4(lh.y, lh.z, Lc, min(lh.w + 1.0, 3.0));
+}
+#endif
+
+#if TAA_GLINT_LAYER
+// The glint layer under its own rule, with the base's validity (q, disocclusion) and filter; n the
+// frames accumulated (TAA_ACCUMULATE).
+vec3 resolve_glint_layer(ivec2 p, vec2 q, bool valid, vec3 g_cur, float n) {
+  vec3 g_out = g_cur;
+  if (valid) {
+    Taps kg = taps_2x2(extra_tex, q);
+#if TAA_FILTER == FILTER_CATMULL_ROM
+    vec3 g_hist = catmull_rom(extra_tex, kg);
+#else
+    vec3 g_hist = max(bilinear(kg), vec3(0.0));
+#endif
+#if TAA_GLINT_CLAMP == 1
+    vec3 g_lo = g_cur, g_hi = g_cur;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        vec3 gs = fetch(glint_tex, p + ivec2(dx, dy)).rgb;
+        g_lo = min(g_lo, gs);
+        g_hi = max(g_hi, gs);
+      }
+    g_hist = clamp(g_hist, g_lo, g_hi);
+#endif
+    float ag = glint_weights.y;
+#if TAA_ACCUMULATE
+    ag = max(ag, 1.0 / n);
+#endif
+    if (finite3(g_hist)) g_out = mix(g_hist, g_cur, ag);
+  }
+  return g_out;
+}
+#endif
+
+void main() {
+  g_size = ivec2(size_alpha_gamma.xy);
+  ivec2 p = ivec2(gl_FragCoord.xy);  // the pixel: the viewport is the image
+  float alpha = size_alpha_gamma.z, gamma = size_alpha_gamma.w;
+  bool valid = history_jitter.x > 0.5;
+
+  // ---- current neighbourhood (HDR-mapped, in box space) and motion
+  vec4 centre_px = fetch(color_tex, p);
+#if TAA_GLINT
+  vec4 glint_px = fetch(glint_tex, p);
+  float share = clamp(glint_px.a, 0.0, 1.0);  // NaN -> 0: no glint-aware change where the layer is undefined
+#endif
+#if TAA_GLINT_LAYER
+  vec3 centre_rgb = centre_px.rgb - glint_px.rgb;
+#else
+  vec3 centre_rgb = centre_px.rgb;
+#endif
+  Neighbourhood nh = neighbourhood(p, centre_rgb);
+  vec3 cur = nh.cur;
+
+  // ---- step 2: reprojection and validity
+  vec2 q = vec2(p) + 0.5 - nh.v;
   bool on_screen = all(greaterThanEqual(q, vec2(0.0))) && all(lessThanEqual(q, vec2(g_size))) && finite3(vec3(q, 0.0));
   if (!on_screen) valid = false;
 #if TAA_DISOCCLUSION
-  if (valid) valid = same_surface(near, vec2(p) + 0.5 - near.xy + history_jitter.zw, history_jitter.y);
+  if (valid) valid = same_surface(nh.near, vec2(p) + 0.5 - nh.near.xy + history_jitter.zw, history_jitter.y);
 #endif
-  Taps k;
   vec3 hist_lin = vec3(0.0);
   if (valid) {
-    k = taps_2x2(history_tex, q);
+    Taps k = taps_2x2(history_tex, q);
 #if TAA_FILTER == FILTER_CATMULL_ROM
     hist_lin = catmull_rom(history_tex, k);
 #else
@@ -455,50 +563,15 @@ void main() {
                   : 1.0;
   if (!(n >= 1.0)) n = 1.0;  // NaN in the history: restart the count
 #endif
+  // ---- steps 3 and 4: rectify and blend
   vec3 result = cur;
-  float a = 1.0;
   vec4 lumas = vec4(0.0);
   if (valid) {
     vec3 raw = box_colour(hist_lin);
-    vec3 h = raw;
-#if TAA_CLAMP == CLAMP_MINMAX
-    h = clamp(raw, lo, hi);
-#elif TAA_CLAMP == CLAMP_CLIP
-    h = clip_to_box(raw, lo, hi);
-#elif TAA_CLAMP == CLAMP_VARIANCE
-    vec3 vlo = mean - gamma * sigma, vhi = mean + gamma * sigma;
-    lo = vlo;
-    hi = vhi;
-    h = clamp(raw, vlo, vhi);
-#endif
-
-#if TAA_FEEDBACK == FEEDBACK_LUMA
-    float L0 = space_luma(cur), L1 = space_luma(h);
-    float k = 1.0 - abs(L0 - L1) / max(max(L0, L1), 0.2);
-    a = 1.0 - mix(0.88, 0.97, k * k);
-#elif TAA_FEEDBACK == FEEDBACK_KARIS
-    float hl = space_luma(h), blo = space_luma(lo), bhi = space_luma(hi);
-    float d = min(abs(hl - blo), abs(bhi - hl)), range = max(bhi - blo, 0.0);
-    a = d + range > 0.0 ? clamp(alpha * d / (d + range), 0.0, 1.0) : alpha;
-#else
-    a = alpha;
-#endif
-
+    vec3 h = rectify(raw, nh, gamma);
+    float a = feedback(cur, h, nh.lo, nh.hi, alpha);
 #if TAA_ANTI_FLICKER
-    // Luma instability (FSR2; UE5 TSR ShadingRejection.Flickering): the last
-    // three lumas of this surface point and the current one; where successive
-    // changes alternate in sign and are large against the luma, the pixel
-    // oscillates and keeps more of its unrectified history.
-    vec4 lh = texelFetch(luma_tex, ivec2(clamp(floor(q), vec2(0.0), vec2(g_size - 1))), 0);
-    float Lc = space_luma(cur);
-    float d1 = lh.y - lh.x, d2 = lh.z - lh.y, d3 = Lc - lh.z;
-    float big = 0.1 * max(max(lh.x, lh.y), max(lh.z, Lc)) + 1e-6;
-    float alternations = (d1 * d2 < 0.0 && min(abs(d1), abs(d2)) > big ? 1.0 : 0.0) +
-                         (d2 * d3 < 0.0 && min(abs(d2), abs(d3)) > big ? 1.0 : 0.0);
-    float s = lh.w >= 3.0 ? 0.5 * alternations : 0.0;  // needs three remembered lumas
-    h = mix(h, raw, s);
-    a *= 1.0 - 0.5 * s;
-    lumas = vec4(lh.y, lh.z, Lc, min(lh.w + 1.0, 3.0));
+    lumas = anti_flicker(q, cur, raw, h, a);
 #endif
 #if TAA_ACCUMULATE
     a = max(a, 1.0 / n);
@@ -524,31 +597,7 @@ void main() {
   // from it being non-finite.
   if (!finite3(centre_px.rgb)) lin = centre_px.rgb;
 #if TAA_GLINT_LAYER
-  // The glint layer under its own rule, with the base's validity (q, disocclusion) and filter.
-  vec3 g_cur = glint_px.rgb, g_out = g_cur;
-  if (valid) {
-    Taps kg = taps_2x2(extra_tex, q);
-#if TAA_FILTER == FILTER_CATMULL_ROM
-    vec3 g_hist = catmull_rom(extra_tex, kg);
-#else
-    vec3 g_hist = max(bilinear(kg), vec3(0.0));
-#endif
-#if TAA_GLINT_CLAMP == 1
-    vec3 g_lo = g_cur, g_hi = g_cur;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        vec3 gs = fetch(glint_tex, p + ivec2(dx, dy)).rgb;
-        g_lo = min(g_lo, gs);
-        g_hi = max(g_hi, gs);
-      }
-    g_hist = clamp(g_hist, g_lo, g_hi);
-#endif
-    float ag = glint_weights.y;
-#if TAA_ACCUMULATE
-    ag = max(ag, 1.0 / n);
-#endif
-    if (finite3(g_hist)) g_out = mix(g_hist, g_cur, ag);
-  }
+  vec3 g_out = resolve_glint_layer(p, q, valid, glint_px.rgb, n);
   vec3 base_lin = lin;
   lin = base_lin + g_out;
   if (!finite3(lin)) lin = max(centre_px.rgb, vec3(0.0));
@@ -559,9 +608,9 @@ void main() {
 #endif
   out_color = vec4(lin, centre_px.a);
 #if TAA_DISOCCLUSION
-  out_history = vec4(history_rgb, near.z);
+  out_history = vec4(history_rgb, nh.near.z);
 #else
-  out_history = vec4(history_rgb, mc.z);
+  out_history = vec4(history_rgb, nh.mc.z);
 #endif
 #if TAA_EXTRA
 #if TAA_GLINT_LAYER
