@@ -29,6 +29,35 @@ struct ValueRange {
   bool contains(double x) const { return x >= lo && x <= hi; }  // false for NaN and +-inf
 };
 
+// Which value of a metric is best: "min" lower, "max" higher, "one" closest to 1 (a ratio: ranked as
+// |ln ratio|), "ref" closest to the reference's own value, "none" not ranked (a count of what was
+// measured, a diagnostic of the vectors).
+// One row per metric: everything glintlab says about it. The schema (units), summary.json
+// ("metric_info", which the report reads: label, direction, description), `check` (its default
+// tolerance), `tune` (what it may minimise) and the spec (a floor target) read this table; a metric
+// is its code and its row.
+struct MetricInfo {
+  const char* name;
+  const char* group;        // "per-pixel" (evaluate_metric), "flicker", "glints", "pooled", "pixels"
+                            // (FrameMetrics and the runner's counts), "motion" (measure's vector check),
+                            // "summary" (a ratio of two means, made where the means are)
+  const char* unit;         // one wording, as frames.csv and summary.json "units" give it
+  const char* label;        // the report's name for it
+  const char* direction;    // "min", "max", "one", "ref" or "none"
+  bool temporal;            // a change between frames (undefined at a sequence's start)
+  bool floor;               // a mean of differences from the truth: the truth's noise gives it a floor
+  double check_tolerance;   // `check`'s default allowed relative worsening; NaN: not gated by default
+  ValueRange range;
+  const char* description;  // what it measures, for the report
+};
+// Every row, per-pixel metrics first, then the frame statistics in FrameMetrics::names() order. The
+// pooled metrics are one row per kind ("pooled_bias_<s>", "pooled_rms_<s>", "pooled_error"): their
+// block sizes are default_pool_block_sizes().
+const std::vector<MetricInfo>& metric_table();
+// The row of a metric as summary.json and records.jsonl name it (its "_max" and pooled_*_<s> included),
+// or nullptr.
+const MetricInfo* metric_info(const std::string& name);
+
 // A statistic of a frame beside the per-pixel metrics, with its range: FrameMetrics gives the groups
 // "flicker" and "glints"; "pixels" are the runner's counts of the test frame's bad pixels.
 struct FrameStatistic {
@@ -44,11 +73,10 @@ const std::vector<FrameStatistic>& frame_statistics();
 // a frame statistic, a pooled scale; nullopt for any other name.
 std::optional<ValueRange> value_range(const std::string& name);
 
-// Whether the truth's noise gives `name` a floor: a metric whose value is a mean of differences between
-// test and truth (the per-pixel errors, the temporal errors, flicker excess and lag, the pooled errors,
-// the glint histogram's distance). The truth's halves A and B, each of half its samples, differ by
-// sqrt(2) x sqrt(2) = 2 times the noise of the whole truth, so the whole truth's floor is half their
-// metric (noise_floor in metrics/frame_metrics.h). Ratios, densities and counts have no floor here.
+// Whether the truth's noise gives `name` a floor (its row's `floor`): a metric whose value is a mean
+// of differences between test and truth. The truth's halves A and B, each of half its samples, differ
+// by sqrt(2) x sqrt(2) = 2 times the noise of the whole truth, so the whole truth's floor is half
+// their metric (noise_floor in metrics/frame_metrics.h). Ratios, densities and counts have none.
 bool has_noise_floor(const std::string& name);
 
 // The groups of frame statistics (FrameMetrics) that a metrics list may name beside the per-pixel

@@ -107,11 +107,12 @@ void validate_summary(const nlohmann::json& j, const std::string& file, bool bas
 }  // namespace
 
 const std::map<std::string, double>& default_check_tolerances() {
-  static const std::map<std::string, double> t = {
-      {"deltaE2000", 0.02},        {"flip", 0.02},          {"flicker_ratio", 0.02}, {"temporal_error", 0.02},
-      {"temporal_error_mc", 0.02}, {"pooled_error", 0.05},  {"nonfinite_pixels", 0.0},
-      {"negative_pixels", 0.0},   {"flicker_contrast", 0.02},
-      {"flicker_excess", 0.05},    {"temporal_lag", 0.05}};
+  static const std::map<std::string, double> t = [] {
+    std::map<std::string, double> out;  // each metric row's default (metrics/metric_registry.h)
+    for (const metrics::MetricInfo& m : metrics::metric_table())
+      if (!std::isnan(m.check_tolerance)) out[m.name] = m.check_tolerance;
+    return out;
+  }();
   return t;
 }
 

@@ -157,6 +157,11 @@ void SummaryWriter::finish() {
   for (const Column& c : schema_.columns())
     if (!c.unit.empty()) units[c.name] = c.unit;
   j["units"] = units;
+  std::vector<std::string> metric_names;  // every summarised metric, and the ratio the report makes of two
+  for (const Column& c : schema_.columns())
+    if (c.summarised) metric_names.push_back(c.name);
+  metric_names.push_back("glint_density_ratio");
+  j["metric_info"] = metric_info_json(metric_names);
 
   nlohmann::json refs = nlohmann::json::array();
   for (size_t i = 0; i < plan_.references.size(); ++i) {

@@ -1,5 +1,7 @@
 #include "experiments/runner/schema.h"
 
+#include "metrics/metric_registry.h"
+
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -10,6 +12,7 @@ namespace glintlab {
 
 namespace {
 
+// The units of the columns that are not metrics (a metric's unit is its row's: metrics/metric_registry.h).
 const std::map<std::string, std::string>& unit_table() {
   static const std::map<std::string, std::string> t = {
       {"frame", "index in the camera path"},
@@ -20,35 +23,7 @@ const std::map<std::string, std::string>& unit_table() {
       {"nan_px", "pixels"},
       {"inf_px", "pixels"},
       {"negative_px", "pixels"},
-      {"nonfinite_pixels", "pixels (NaN or Inf)"},
-      {"negative_pixels", "pixels (finite < 0)"},
       {"reference_cached", "0/1"},
-      {"deltaE2000", "ΔE00 (CIEDE2000)"},
-      {"deltaEITP", "ΔE_ITP (BT.2124, Y = 1 at 100 cd/m²)"},
-      {"flip", "FLIP error in [0, 1]"},
-      {"psnr", "dB (luminance, peak 1)"},
-      {"relative", "|Yt − Yr| / (Yr + 0.01)"},
-      {"flicker_ratio", "ratio (mean Weber contrast of change along the motion, test / reference)"},
-      {"temporal_error", "PQ code value (mean |e_t − e_{t−1}|, e = PQ(T) − PQ(R), fixed pixel)"},
-      {"temporal_error_mc", "PQ code value (the same along the motion)"},
-      {"frame_diff_ratio", "ratio (mean |ΔT| / mean |ΔR| at a fixed pixel, PQ)"},
-      {"flicker_contrast", "Weber contrast (mean |ΔT| along the motion / the test's own low-passed Y)"},
-      {"flicker_excess", "Weber contrast (mean max(0, |ΔT| − |ΔR|) along the motion, both low-passed at σ = 2 px)"},
-      {"temporal_lag", "Weber contrast (mean max(0, |ΔR| − |ΔT|) along the motion, both low-passed at σ = 2 px)"},
-      {"flicker_excess_fixed", "Weber contrast (the excess at a fixed pixel: fixed gaze)"},
-      {"motion_explained", "ratio (mean |ΔR| along the motion / at a fixed pixel, PQ; 0 = all explained)"},
-      {"motion_explained_negated", "ratio (the same with the vectors negated)"},
-      {"motion_explained_flip_y", "ratio (the same with y flipped)"},
-      {"motion_explained_flip_x", "ratio (the same with x flipped)"},
-      {"motion_nonfinite_px", "pixels (NaN or Inf motion vectors)"},
-      {"reference_nonfinite_px", "pixels of the reference frame (NaN or Inf)"},
-      {"reference_negative_px", "pixels of the reference frame (finite < 0)"},
-      {"flicker_valid_px", "pixels"},
-      {"flicker_disoccluded_px", "pixels"},
-      {"glint_density_test", "glints per 1000 px"},
-      {"glint_density_ref", "glints per 1000 px"},
-      {"glint_hist_emd_oct", "octaves"},
-      {"pooled_error", "Y (RMS of 8×8-pixel block means)"},
   };
   return t;
 }
@@ -58,11 +33,26 @@ const std::map<std::string, std::string>& unit_table() {
 std::string unit_of(const std::string& name) {
   auto it = unit_table().find(name);
   if (it != unit_table().end()) return it->second;
-  if (name.size() > 4 && name.compare(name.size() - 4, 4, "_max") == 0) return unit_of(name.substr(0, name.size() - 4));
-  if (name.rfind("pooled_bias_", 0) == 0 || name.rfind("pooled_rms_", 0) == 0) return "Y (block means)";
+  if (const metrics::MetricInfo* m = metrics::metric_info(name)) return m->unit;
   if (name.rfind("gpu_ms_", 0) == 0) return "ms (GPU timestamps)";
   if (name.rfind(kFloorPrefix, 0) == 0) return unit_of(name.substr(std::string(kFloorPrefix).size()));
   return "";
+}
+
+nlohmann::json metric_info_json(const std::vector<std::string>& names) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const std::string& n : names)
+    if (const metrics::MetricInfo* m = metrics::metric_info(n))
+      out[n] = {{"unit", m->unit},
+                {"label", m->label},
+                {"direction", m->direction},
+                {"group", m->group},
+                {"temporal", m->temporal},
+                {"floor", metrics::has_noise_floor(n)},
+                {"check_tolerance", std::isnan(m->check_tolerance) ? nlohmann::json(nullptr)
+                                                                   : nlohmann::json(m->check_tolerance)},
+                {"description", m->description}};
+  return out;
 }
 
 std::string csv_number(double x) {

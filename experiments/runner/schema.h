@@ -7,6 +7,8 @@
 
 #include "experiments/runner/records.h"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
@@ -44,6 +46,11 @@ class FrameSchema {
   std::vector<Column> columns_;
   std::vector<std::string> passes_;
 };
+
+// summary.json's "metric_info" (and tune's study): for each name that has a row in the metric table
+// (metrics/metric_registry.h), {"unit", "label", "direction", "group", "temporal", "floor",
+// "check_tolerance" (null: not gated by default), "description"}. Names without a row are left out.
+nlohmann::json metric_info_json(const std::vector<std::string>& names);
 
 // The unit of a metric or timing name ("ms", "ΔE00", ...).
 std::string unit_of(const std::string& name);

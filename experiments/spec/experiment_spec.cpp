@@ -185,9 +185,13 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
       if (auto fl = ref->optional_child("floor")) {
         for (auto it = fl->json().begin(); it != fl->json().end(); ++it) {
           if (!metrics::has_noise_floor(it.key()) || !metrics::value_range(it.key()))
-            fl->fail(it.key(), "not a metric with a noise floor (allowed: the per-pixel metrics deltaE2000, "
-                               "deltaEITP, flip; temporal_error, temporal_error_mc, flicker_excess, temporal_lag, "
-                               "flicker_excess_fixed; pooled_error, pooled_rms_<block>; glint_hist_emd_oct)");
+          {
+            std::string allowed;  // every metric whose row says it has a floor
+            for (const metrics::MetricInfo& m : metrics::metric_table())
+              if (m.floor) allowed += (allowed.empty() ? "" : ", ") + std::string(m.name) +
+                                      (std::string(m.name).back() == '_' ? "<block>" : "");
+            fl->fail(it.key(), "not a metric with a noise floor (allowed: " + allowed + ")");
+          }
           s.reference.floor_target[it.key()] = fl->get_number(it.key(), 1e-3, 1.0);
         }
         if (s.reference.floor_target.empty())

@@ -50,7 +50,6 @@ HEARTBEAT_S = 5.0
 GRACE_S = 120.0          # a heartbeat older than this: the worker is gone (another host, or a hung one)
 POLL_S = 1.0
 STALE_LOCK_S = 60.0      # Optuna's journal lock file older than this was left by a killed writer
-RATIO_OBJECTIVES = ("flicker_ratio", "frame_diff_ratio")
 
 
 def atomic_write(path, text):
@@ -211,8 +210,9 @@ def metric_mean(variant, name):
     return None
 
 
-def objective_value(variant, name):
-    """The value minimised for objective `name` from a summary's variant, or None."""
+def objective_value(variant, name, metric_info):
+    """The value minimised for objective `name` from a summary's variant, or None; metric_info: the
+    summary's "metric_info" (a metric whose best value is 1 is minimised as |ln ratio|)."""
     if name == "gpu_ms":
         g = variant.get("gpu_ms")
         return float(g["mean"]) if isinstance(g, dict) and isinstance(g.get("mean"), (int, float)) else None
@@ -220,7 +220,7 @@ def objective_value(variant, name):
         t, r = metric_mean(variant, "glint_density_test"), metric_mean(variant, "glint_density_ref")
         return abs(math.log(t / r)) if t and r and t > 0 and r > 0 else None
     m = metric_mean(variant, name)
-    if m is not None and name in RATIO_OBJECTIVES:
+    if m is not None and (metric_info.get(name) or {}).get("direction") == "one":
         return abs(math.log(m)) if m > 0 else None
     return m
 
@@ -321,15 +321,15 @@ class Worker:
         if rc == 0:
             with open(os.path.join(tdir, "run", "summary.json"), encoding="utf-8") as f:
                 v = json.load(f)["variants"][0]
-            values = [objective_value(v, m) for m in self.d["objectives"]]
+            values = [objective_value(v, m, self.d["metric_info"]) for m in self.d["objectives"]]
             missing = [m for m, x in zip(self.d["objectives"], values) if x is None]
             if missing:
                 why = "no value for " + ", ".join(missing)
                 values = None
             else:
-                trial.set_user_attr("gpu_ms", objective_value(v, "gpu_ms"))
+                trial.set_user_attr("gpu_ms", objective_value(v, "gpu_ms", self.d["metric_info"]))
                 for m in self.d["objectives"]:
-                    trial.set_user_attr("raw_" + m, metric_mean(v, m) if m != "gpu_ms" else objective_value(v, m))
+                    trial.set_user_attr("raw_" + m, metric_mean(v, m) if m != "gpu_ms" else objective_value(v, m, self.d["metric_info"]))
         else:
             why = f"glintlab run exited {rc} (see {os.path.join(tdir, 'run.log')})"
         trial.set_user_attr("run_s", run_s)
@@ -423,7 +423,7 @@ def baseline(study_dir, d):
     for v in s["variants"]:
         if model is not None and v.get("glint_model") != model:
             continue
-        vals = [objective_value(v, m) for m in d["objectives"]]
+        vals = [objective_value(v, m, d["metric_info"]) for m in d["objectives"]]
         if all(x is not None for x in vals):
             pts.append((v["name"], vals))
     return pts
@@ -434,7 +434,7 @@ def write_report(study_dir, d, study, done, front):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     objs, keys = d["objectives"], [s["key"] for s in d["space"]]
-    label = lambda m: f"|ln {m}|" if m in RATIO_OBJECTIVES or m == "glint_density_ratio" else m
+    label = lambda m: f"|ln {m}|" if (d["metric_info"].get(m) or {}).get("direction") == "one" else m
     figs = []
 
     def svg(fig):

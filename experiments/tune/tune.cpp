@@ -1,10 +1,14 @@
 #include "experiments/tune/tune.h"
 
+#include "experiments/runner/schema.h"
+
 #include "core/util/atomic_file.h"
 #include "core/util/data_dir.h"
 #include "core/util/json_check.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/runner/schema.h"
 #include "experiments/spec/experiment_spec.h"
+#include "metrics/metric_registry.h"
 
 #include <sys/file.h>
 #include <fcntl.h>
@@ -28,12 +32,21 @@ using nlohmann::json;
 
 namespace {
 
-// Ratios are scored as |ln ratio| (1 is the truth), psnr is not offered (it is maximised and
-// unbounded where the test equals the truth); every other metric is minimised as it is.
-const std::vector<std::string> kObjectives = {
-    "flicker_ratio",  "glint_density_ratio", "gpu_ms",        "deltaE2000",          "deltaEITP",
-    "flip",           "relative",            "temporal_error", "temporal_error_mc",  "flicker_excess",
-    "temporal_lag",   "flicker_excess_fixed", "frame_diff_ratio", "pooled_error",     "glint_hist_emd_oct"};
+// What a study may minimise: gpu_ms and every metric whose best value is its lowest ("min") or 1 (a
+// ratio, scored as |ln ratio|), from the metric table (metrics/metric_registry.h); not psnr (maximised,
+// unbounded where the test equals the truth), the counts of defects, the motion check or the pooled
+// kinds by block size.
+const std::vector<std::string>& objectives() {
+  static const std::vector<std::string> out = [] {
+    std::vector<std::string> o = {"gpu_ms"};
+    for (const metrics::MetricInfo& m : metrics::metric_table()) {
+      const std::string g = m.group, d = m.direction, name = m.name;
+      if ((d == "min" || d == "one") && g != "pixels" && g != "motion" && name.back() != '_') o.push_back(name);
+    }
+    return o;
+  }();
+  return out;
+}
 
 std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
   std::string s;
@@ -119,7 +132,7 @@ json with_value(json variant, const std::string& key, const json& value) {
 
 }  // namespace
 
-std::vector<std::string> objective_names() { return kObjectives; }
+std::vector<std::string> objective_names() { return objectives(); }
 
 json tune_definition(const TuneOptions& o, const json& experiment, const std::string& file) {
   if (o.trials < 1) fail("--trials must be at least 1");
@@ -141,13 +154,13 @@ json tune_definition(const TuneOptions& o, const json& experiment, const std::st
   }
   if (base_index < 0) fail("--base \"" + o.base + "\" is not a variant of " + file + "; its variants: " + join(names));
   if (o.space.empty()) fail("--space: at least one KEY=RANGE");
-  if (o.objectives.empty()) fail("--objectives: at least one of " + join(kObjectives));
+  if (o.objectives.empty()) fail("--objectives: at least one of " + join(objectives()));
   std::vector<std::string> seen;
   for (const std::string& m : o.objectives) {
     if (m.empty())
-      fail("--objectives: an empty name (two commas in a row, or one at an end); allowed: " + join(kObjectives));
-    if (std::find(kObjectives.begin(), kObjectives.end(), m) == kObjectives.end())
-      fail("--objectives: unknown objective \"" + m + "\"; allowed: " + join(kObjectives));
+      fail("--objectives: an empty name (two commas in a row, or one at an end); allowed: " + join(objectives()));
+    if (std::find(objectives().begin(), objectives().end(), m) == objectives().end())
+      fail("--objectives: unknown objective \"" + m + "\"; allowed: " + join(objectives()));
     if (std::find(seen.begin(), seen.end(), m) != seen.end()) fail("--objectives: \"" + m + "\" twice");
     seen.push_back(m);
     // An objective the experiment does not measure (its "metrics" list leaves it out) would be missing
@@ -192,6 +205,7 @@ json tune_definition(const TuneOptions& o, const json& experiment, const std::st
           {"base_variant", base},
           {"space", space},
           {"objectives", o.objectives},
+          {"metric_info", metric_info_json(o.objectives)},
           {"sampler", o.sampler},
           {"seed", o.seed},
           {"storage", o.storage}};
