@@ -1,4 +1,5 @@
 #include "metrics/frame_metrics.h"
+#include "core/util/strings.h"
 
 #include "metrics/color/measurement_space.h"
 #include "metrics/glint_stats.h"
@@ -22,7 +23,6 @@ NamedValues noise_floor(const NamedValues& halves) {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 }  // namespace
 
 FrameMetrics::FrameMetrics(const ColorManager& cm, std::string working_space, std::vector<std::string> per_pixel,

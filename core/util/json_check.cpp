@@ -1,4 +1,5 @@
 #include "core/util/json_check.h"
+#include "core/util/strings.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,11 +11,7 @@ namespace glintlab {
 namespace {
 std::string type_name(const nlohmann::json& v) { return v.type_name(); }
 
-std::string join(const std::vector<std::string>& xs) {
-  std::string s;
-  for (size_t i = 0; i < xs.size(); ++i) s += (i ? ", " : "") + ("\"" + xs[i] + "\"");
-  return s;
-}
+std::string quoted_list(const std::vector<std::string>& xs) { return join(xs, ", ", "\""); }
 
 std::string fmt_num(double v) {
   std::ostringstream o;
@@ -139,11 +136,11 @@ std::string JsonReader::get_string(const std::string& key, const std::string& de
 
 std::string JsonReader::get_enum(const std::string& key, const std::vector<std::string>& allowed) {
   const auto& v = raw(key);
-  if (!v.is_string()) fail(key, "expected one of " + join(allowed) + ", got " + type_name(v));
+  if (!v.is_string()) fail(key, "expected one of " + quoted_list(allowed) + ", got " + type_name(v));
   std::string s = v.get<std::string>();
   for (const auto& a : allowed)
     if (a == s) return s;
-  fail(key, "\"" + s + "\" is not allowed; expected one of " + join(allowed));
+  fail(key, "\"" + s + "\" is not allowed; expected one of " + quoted_list(allowed));
 }
 
 std::string JsonReader::get_enum(const std::string& key, const std::string& def,
@@ -205,8 +202,8 @@ void JsonReader::finish() const {
   if (unknown.empty()) return;
   std::vector<std::string> known(asked_.begin(), asked_.end());
   throw ConfigError(file_ + ": " + key_path(unknown.front()) + ": unknown key" +
-                    (unknown.size() > 1 ? " (also unknown: " + join({unknown.begin() + 1, unknown.end()}) + ")" : "") +
-                    (known.empty() ? "" : "; allowed keys here: " + join(known)));
+                    (unknown.size() > 1 ? " (also unknown: " + quoted_list({unknown.begin() + 1, unknown.end()}) + ")" : "") +
+                    (known.empty() ? "" : "; allowed keys here: " + quoted_list(known)));
 }
 
 }  // namespace glintlab

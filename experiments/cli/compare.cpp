@@ -1,4 +1,5 @@
 #include "experiments/cli/compare.h"
+#include "core/util/strings.h"
 
 #include <algorithm>
 #include <cctype>
@@ -29,12 +30,6 @@ namespace glintlab {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string join(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
 
 std::string size_str(const Image& img) { return std::to_string(img.width) + "x" + std::to_string(img.height); }
 

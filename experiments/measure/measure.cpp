@@ -1,4 +1,5 @@
 #include "experiments/measure/measure.h"
+#include "core/util/strings.h"
 
 #include "core/util/allocator.h"
 #include "core/util/content_hash.h"
@@ -39,7 +40,6 @@ namespace glintlab {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // A test's name becomes a folder of previews: the one rule of variant names (experiment_spec.h).
 void check_name(const std::string& name, const std::string& what) {

@@ -1,4 +1,5 @@
 #include "experiments/runner/frame_loop.h"
+#include "core/util/strings.h"
 
 #include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
@@ -16,7 +17,6 @@ namespace glintlab {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 }  // namespace
 
 struct FrameLoop::Impl {

@@ -119,7 +119,7 @@ ExperimentSpec effective_spec(const nlohmann::json& source, const std::string& f
 // grows by the ratio (the floor of a mean of differences falls as 1 / sqrt(samples), so as 1 / grid;
 // at least by one, at most to max_grid) and the experiment runs again. Sets *grid to the first grid that
 // meets every target (or max_grid) and *sizing to the account summary.json keeps as
-// "reference_sizing". Returns an exit code (0, or the sizing run's 2 or device failure).
+// "reference_sizing". Returns an exit code (0, or the sizing run's 2, 3, 4 or 5).
 int size_reference(const RunOptions& opt, const ExperimentSpec& spec, std::ostream& log, int* grid,
                    nlohmann::json* sizing) {
   const ReferenceSpec& ref = spec.reference;
@@ -135,7 +135,7 @@ int size_reference(const RunOptions& opt, const ExperimentSpec& spec, std::ostre
     o.resume = opt.resume && fs::exists(fs::path(o.out_dir) / "records.jsonl");
     log << "reference sizing: " << g << "x" << g << " samples per pixel, in " << o.out_dir << "\n";
     const int status = run_experiment(o, log);
-    if (status == kExitBadInput) return status;
+    if (status != kExitOk && status != kExitDefect) return status;  // bad input, the device, I/O
     const nlohmann::json summary = read_json_file((fs::path(o.out_dir) / "summary.json").string());
     double worst = 0;  // the largest floor / (fraction x smallest value) over metrics and truths
     nlohmann::json step = {{"grid", g}, {"spp", g * g}, {"floor", nlohmann::json::object()},
@@ -187,25 +187,20 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   nlohmann::json source, overrides = nlohmann::json::object();
   std::string file;
   ExperimentSpec spec;
-  try {
-    file = resolve_experiment_path(opt.experiment);
-    source = read_json_file(file);
-    if (opt.width > 0 || opt.height > 0) {
-      if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
-        throw ConfigError("--resolution: " + std::to_string(opt.width) + "x" + std::to_string(opt.height) +
-                          " is outside 1x1 ... 16384x16384");
-      overrides["resolution"] = {opt.width, opt.height};
-    }
-    if (opt.max_frames > 0) overrides["frames"] = opt.max_frames;
-    if (!opt.variants.empty()) overrides["variants"] = opt.variants;
-    if (opt.reference_grid > 0) overrides["reference_grid"] = opt.reference_grid;
-    if (opt.shard_count < 1 || opt.shard_index < 0 || opt.shard_index >= opt.shard_count)
-      throw ConfigError("--shard: expected k/n with 1 <= k <= n");
-    spec = effective_spec(source, file, overrides);
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
+  file = resolve_experiment_path(opt.experiment);
+  source = read_json_file(file);
+  if (opt.width > 0 || opt.height > 0) {
+    if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
+      throw ConfigError("--resolution: " + std::to_string(opt.width) + "x" + std::to_string(opt.height) +
+                        " is outside 1x1 ... 16384x16384");
+    overrides["resolution"] = {opt.width, opt.height};
   }
+  if (opt.max_frames > 0) overrides["frames"] = opt.max_frames;
+  if (!opt.variants.empty()) overrides["variants"] = opt.variants;
+  if (opt.reference_grid > 0) overrides["reference_grid"] = opt.reference_grid;
+  if (opt.shard_count < 1 || opt.shard_index < 0 || opt.shard_index >= opt.shard_count)
+    throw ConfigError("--shard: expected k/n with 1 <= k <= n");
+  spec = effective_spec(source, file, overrides);
   if (spec.frames_only.enabled) {  // every source is files: the measurement of `glintlab measure`
     MeasureOptions m;
     m.file = file;
@@ -268,12 +263,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   }
 
   const metrics::ColorManager cm = load_color_manager(opt.ocio_config);
-  try {
-    check_color_names(spec, cm);  // before anything is written or rendered
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  check_color_names(spec, cm);  // before anything is written or rendered
   // ---- the device: part of what identifies the run (a resume or merge on another device is refused)
   core::VkContext ctx(core::ContextOptions{opt.device, opt.validation});
   const fs::path out_dir(opt.out_dir);
@@ -290,13 +280,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
                                  {"shard", {opt.shard_index, opt.shard_count}}};
   header["inputs"] = run_input_hashes(spec, cm);
   header["device"] = ctx.info().name;
-  std::unique_ptr<Journal> journal;
-  try {
-    journal = std::make_unique<Journal>(out_dir, header, opt.resume);
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  auto journal = std::make_unique<Journal>(out_dir, header, opt.resume);
   if (journal->dropped_lines() > 0)
     log << "note: dropped " << journal->dropped_lines() << " incomplete line(s) of the journal (a killed run)\n";
 
@@ -314,12 +298,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   if (!opt.images) spec.output.exr = spec.output.png = spec.output.contact_sheet = spec.output.motion = spec.output.halves = false;
   const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name, &log);
   const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);
-  try {
-    journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
   const WorkSchedule work = schedule_work(plan, *journal, begin, end);
   if (opt.shard_count > 1)
     log << "shard " << opt.shard_index + 1 << "/" << opt.shard_count << ": frames " << begin << " to " << end - 1
@@ -362,7 +341,10 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   return status;
 }
 
-int run_experiment(const RunOptions& opt, std::ostream& log) { return run_with(opt, log, nlohmann::json::object()); }
+// The exit codes of experiments/cli/exit_codes.h, in one place: what the run throws is mapped there.
+int run_experiment(const RunOptions& opt, std::ostream& log) {
+  return run_guarded([&] { return run_with(opt, log, nlohmann::json::object()); }, log);
+}
 
 // A journal header as `run` writes it, checked before merge reads its fields (a header is input: a
 // shard index of 6.7e32 must not be converted to int, a "file" that is a number must not throw).
@@ -395,7 +377,7 @@ void check_run_header(const nlohmann::json& h, const std::string& dir) {
   }
 }
 
-int merge_runs(const std::vector<std::string>& dirs, const std::string& out, bool report, std::ostream& log) {
+static int merge_with(const std::vector<std::string>& dirs, const std::string& out, bool report, std::ostream& log) {
   if (dirs.empty()) {
     log << "error: merge: name the shard folders to join\n";
     return kExitBadInput;
@@ -412,14 +394,9 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
     }
   }
   std::vector<Journal> journals;
-  try {
-    for (const auto& d : dirs) {
-      journals.push_back(Journal::load(d));
-      check_run_header(journals.back().header(), d);
-    }
-  } catch (const ConfigError& e) {
-    log << "error: merge: " << e.what() << "\n";
-    return kExitBadInput;
+  for (const auto& d : dirs) {
+    journals.push_back(Journal::load(d));
+    check_run_header(journals.back().header(), d);
   }
   // One run: the same experiment, options and shard count; every shard once.
   nlohmann::json first = journals[0].header();
@@ -451,13 +428,7 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
     log << "error: merge: shard(s) " << missing << " missing\n";
     return kExitBadInput;
   }
-  ExperimentSpec spec;
-  try {
-    spec = effective_spec(first["source"], first["file"].get<std::string>(), first["overrides"]);
-  } catch (const ConfigError& e) {
-    log << "error: merge: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  const ExperimentSpec spec = effective_spec(first["source"], first["file"].get<std::string>(), first["overrides"]);
   // The shards' own OCIO config (their summaries name it; the journal headers hold its content).
   std::string ocio_path = metrics::ColorManager::default_config_path();
   try {
@@ -474,12 +445,7 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
   metrics::ColorManager cm(ocio_path);
   const SceneData data = build_scene(spec, cm);
   const RunPlan plan = make_plan(spec, spec.frames, first["command"] == "run" && spec.reference.enabled, cm, data, "");
-  try {
-    for (const Journal& j : journals) j.check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
-  } catch (const ConfigError& e) {
-    log << "error: merge: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  for (const Journal& j : journals) j.check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
   // Every frame of every variant exactly once.
   for (size_t v = 0; v < plan.variants.size(); ++v)
     for (int k = 0; k < plan.frames; ++k) {
@@ -508,6 +474,18 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
       write_run_outputs(out_dir, plan, js, RunInfo{device, cm.config_path(), 1}, images, report, &report_status, log);
   print_table(log, summary);
   return report_status;
+}
+
+int merge_runs(const std::vector<std::string>& dirs, const std::string& out, bool report, std::ostream& log) {
+  return run_guarded(
+      [&] {
+        try {
+          return merge_with(dirs, out, report, log);
+        } catch (const ConfigError& e) {  // which command the message is from: the shards are its input
+          throw ConfigError(std::string("merge: ") + e.what());
+        }
+      },
+      log);
 }
 
 }  // namespace glintlab

@@ -33,8 +33,8 @@ struct RunOptions {
 
 // Returns the process exit code (experiments/cli/exit_codes.h): 0 ok, 1 a
 // frame had NaN/Inf/negative pixels or the validation layer reported something
-// (the run still completes and reports them), 2 bad input. Device and I/O
-// failures throw (core::VulkanError, IoError).
+// (the run still completes and reports them), 2 bad input, 3 the device, 4 I/O,
+// 5 internal (what the run throws, mapped by run_guarded and printed on `log`).
 int run_experiment(const RunOptions& options, std::ostream& log);
 
 // `glintlab merge DIR... --out DIR`: joins the journals of the shards of one

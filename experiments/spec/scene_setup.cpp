@@ -1,4 +1,5 @@
 #include "experiments/spec/scene_setup.h"
+#include "core/util/strings.h"
 
 #include "core/scene/mesh.h"
 #include "core/util/json_check.h"
@@ -101,11 +102,6 @@ core::SandFeatures distance_range(const ExperimentSpec& spec, const core::Mesh& 
 }
 
 void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
-  auto join = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-    return s;
-  };
   auto fail = [&](const std::string& key, const std::string& what) {
     throw ConfigError(spec.file + ": " + key + ": " + what + " (OCIO config " + cm.config_path() + ")");
   };

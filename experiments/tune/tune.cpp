@@ -1,4 +1,5 @@
 #include "experiments/tune/tune.h"
+#include "core/util/strings.h"
 
 #include "experiments/runner/schema.h"
 
@@ -46,12 +47,6 @@ const std::vector<std::string>& objectives() {
     return o;
   }();
   return out;
-}
-
-std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
-  return s;
 }
 
 [[noreturn]] void fail(const std::string& what) { throw ConfigError("tune: " + what); }

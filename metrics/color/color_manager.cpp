@@ -1,4 +1,5 @@
 #include "metrics/color/color_manager.h"
+#include "core/util/strings.h"
 
 #include "core/util/data_dir.h"
 
@@ -22,12 +23,6 @@ struct ColorManager::Impl {
 };
 
 namespace {
-
-std::string join(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
 
 // Applies a CPU processor to the RGB channels of an interleaved float image (3 or 4 channels);
 // alpha is never changed.
