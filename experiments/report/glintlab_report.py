@@ -75,7 +75,8 @@ class BadInput(Exception):
 # ------------------------------------------------------------------ metrics
 # name -> (label, direction, explanation). direction: "min" lower is better,
 # "max" higher is better, "one" closest to 1 is best, "ref" closest to the
-# reference's value. The unit comes from summary.json "units".
+# reference's value. The unit comes from summary.json "units". Where summary.json has "metric_info",
+# its label, direction, description and unit of a metric take precedence (use_metric_info).
 METRICS = {
     "deltaE2000": ("ΔE00", "min",
                    "CIEDE2000 colour difference of each pixel against the reference, averaged over the frame. "
@@ -152,16 +153,43 @@ CURVE_METRICS = ["flicker_ratio", "deltaE2000"]
 AA_MARKERS = {"none": "o", "ssaa": "s", "taa": "^"}
 
 
+DIRECTIONS = ("min", "max", "one", "ref", "none")
+# summary.json "metric_info" ({metric: {"label", "direction", "description", "unit", ...}}), where the
+# run has one: its fields take precedence over METRICS; use_metric_info sets it for the run reported.
+METRIC_INFO = {}
+
+
+def use_metric_info(summary):
+    """Keeps the well-formed fields of summary.json's "metric_info" (absent or malformed: none)."""
+    METRIC_INFO.clear()
+    info = summary.get("metric_info")
+    if not isinstance(info, dict):
+        return
+    for name, row in info.items():
+        if not isinstance(row, dict):
+            continue
+        kept = {k: row[k] for k in ("label", "description", "unit") if isinstance(row.get(k), str) and row[k]}
+        if row.get("direction") in DIRECTIONS:
+            kept["direction"] = row["direction"]
+        METRIC_INFO[name] = kept
+
+
 def label_of(name):
-    return METRICS.get(name, (name,))[0]
+    return METRIC_INFO.get(name, {}).get("label") or METRICS.get(name, (name,))[0]
 
 
 def direction_of(name):
-    return METRICS.get(name, ("", "min"))[1]
+    return METRIC_INFO.get(name, {}).get("direction") or METRICS.get(name, ("", "min"))[1]
 
 
 def description_of(name):
-    return METRICS[name][2]
+    """The metric's explanation, or None where neither metric_info nor METRICS has one."""
+    return METRIC_INFO.get(name, {}).get("description") or (METRICS[name][2] if name in METRICS else None)
+
+
+def unit_of(units, name, default=""):
+    """The metric's unit from summary.json "units", else from "metric_info", else default."""
+    return units.get(name) or METRIC_INFO.get(name, {}).get("unit") or default
 
 
 # ------------------------------------------------------------------ small helpers
@@ -635,6 +663,7 @@ class Report:
     def __init__(self, run_dir):
         self.run_dir = run_dir
         self.summary, self.frames = load_run(run_dir)
+        use_metric_info(self.summary)
         self.figs = Figures(os.path.join(run_dir, "figures"))
         os.makedirs(self.figs.dir, exist_ok=True)
         setup_matplotlib()
@@ -765,7 +794,7 @@ class Report:
                    or any(self.metric_stat(v, m, "max") for v in variants)]
         cols = [("gpu", "GPU ms/frame", units.get("gpu_ms", "ms (GPU timestamps)"), "min")]
         cols += [("pass:" + p, f"GPU ms: {p}", units.get("gpu_ms_" + p, "ms (GPU timestamps)"), "min") for p in passes]
-        cols += [("metric:" + m, label_of(m), units.get(m, ""), direction_of(m)) for m in present]
+        cols += [("metric:" + m, label_of(m), unit_of(units, m), direction_of(m)) for m in present]
         return cols
 
     @staticmethod
@@ -830,13 +859,16 @@ class Report:
             present.update((v.get("metrics") or {}).keys())
         pooled = sorted({int(k.rsplit("_", 1)[1]) for k in present
                          if k.startswith(("pooled_bias_", "pooled_rms_")) and k.rsplit("_", 1)[1].isdigit()})
-        described = [(m, description_of(m), units.get(m, "")) for m in TABLE_METRICS + ["relative", "frame_diff_ratio"]
-                     if m in present]
-        others = sorted(k for k in present if k not in METRICS and not k.endswith("_max")
-                        and not k.startswith(("pooled_bias_", "pooled_rms_")))
+        rest = sorted(k for k in present if k not in METRICS and not k.endswith("_max")
+                      and not k.startswith(("pooled_bias_", "pooled_rms_")))
+        # The report's own order first, then what metric_info alone describes, then the rest by name.
+        order = [m for m in TABLE_METRICS + ["relative", "frame_diff_ratio"] if m in present]
+        order += [k for k in rest if description_of(k)]
+        described = [(m, description_of(m), unit_of(units, m)) for m in order]
+        others = [k for k in rest if not description_of(k)]
         return {"described": described, "pooled": pooled,
                 "pooled_unit": units.get("pooled_rms_%d" % pooled[0], "Y (block means)") if pooled else "",
-                "others": [(k, units.get(k)) for k in others],
+                "others": [(k, unit_of(units, k, None)) for k in others],
                 "has_max": any(k.endswith("_max") for k in present),
                 "device": self.summary.get("device", "?"), "gpu_unit": units.get("gpu_ms", "ms"),
                 "referred": self.summary.get("per_pixel_metrics_referred", "scene")}
