@@ -12,7 +12,7 @@ PKGS=(
   nlohmann-json3-dev libcli11-dev libxxhash-dev libopencv-video-dev ninja-build
   fonts-dejavu-core
   clang libclang-rt-14-dev llvm
-  python3 python3-numpy python3-matplotlib python3-pil chromium  # report (experiments/report/) and its browser test
+  python3 python3-numpy python3-scipy python3-matplotlib python3-pil python3-jinja2 chromium  # report (experiments/report/) and its browser test
   python3-optuna python3-sklearn parallel slurm-wlm munge  # tune (experiments/tune/): Optuna, its importances, schedulers
   strace  # the install test: the installed glintlab opens nothing in the source or build tree (tests/install/)
 )

@@ -8,6 +8,8 @@ the PNG previews RUN_DIR/<variant or reference>/frame_NNNN.png, and writes
 
     RUN_DIR/report.html          one file: plots as inline SVG, images and
                                  animations as data URIs; nothing is fetched
+                                 (the page from the Jinja2 templates in
+                                 templates/ beside this script)
     RUN_DIR/figures/*.svg|pdf    every plot, for papers (matplotlib)
     RUN_DIR/figures/*.png|webp|gif|mp4
                                  the glint crops and the side-by-side sequences
@@ -15,17 +17,17 @@ the PNG previews RUN_DIR/<variant or reference>/frame_NNNN.png, and writes
 
 Exit codes (experiments/cli/exit_codes.h): 0 written, 2 bad input (no
 summary.json, not a glintlab summary), 4 a file could not be read or written,
-5 internal error, 10 a Python module is missing (numpy, matplotlib, PIL; the
-message names the Debian packages).
+5 internal error, 10 a Python module is missing (numpy, scipy, matplotlib, PIL,
+jinja2; the message names the Debian packages).
 
-Debian 12 packages: python3-matplotlib python3-pil python3-numpy (bootstrap.sh).
+Debian 12 packages: python3-matplotlib python3-pil python3-numpy python3-scipy
+python3-jinja2 (bootstrap.sh).
 """
 
 import base64
 import concurrent.futures
 import csv
 import datetime
-import html
 import io
 import json
 import math
@@ -44,6 +46,10 @@ try:
 except ImportError:
     _missing.append(("numpy", "python3-numpy"))
 try:
+    import scipy.ndimage
+except ImportError:
+    _missing.append(("scipy", "python3-scipy"))
+try:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -54,6 +60,12 @@ try:
     from PIL import Image, ImageDraw, ImageFont, features
 except ImportError:
     _missing.append(("PIL", "python3-pil"))
+try:
+    import jinja2
+except ImportError:
+    _missing.append(("jinja2", "python3-jinja2"))
+
+TEMPLATE_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "templates")
 
 
 class BadInput(Exception):
@@ -63,7 +75,8 @@ class BadInput(Exception):
 # ------------------------------------------------------------------ metrics
 # name -> (label, direction, explanation). direction: "min" lower is better,
 # "max" higher is better, "one" closest to 1 is best, "ref" closest to the
-# reference's value. The unit comes from summary.json "units".
+# reference's value. The unit comes from summary.json "units". Where summary.json has "metric_info",
+# its label, direction, description and unit of a metric take precedence (use_metric_info).
 METRICS = {
     "deltaE2000": ("ΔE00", "min",
                    "CIEDE2000 colour difference of each pixel against the reference, averaged over the frame. "
@@ -140,15 +153,46 @@ CURVE_METRICS = ["flicker_ratio", "deltaE2000"]
 AA_MARKERS = {"none": "o", "ssaa": "s", "taa": "^"}
 
 
+DIRECTIONS = ("min", "max", "one", "ref", "none")
+# summary.json "metric_info" ({metric: {"label", "direction", "description", "unit", ...}}), where the
+# run has one: its fields take precedence over METRICS; use_metric_info sets it for the run reported.
+METRIC_INFO = {}
+
+
+def use_metric_info(summary):
+    """Keeps the well-formed fields of summary.json's "metric_info" (absent or malformed: none)."""
+    METRIC_INFO.clear()
+    info = summary.get("metric_info")
+    if not isinstance(info, dict):
+        return
+    for name, row in info.items():
+        if not isinstance(row, dict):
+            continue
+        kept = {k: row[k] for k in ("label", "description", "unit") if isinstance(row.get(k), str) and row[k]}
+        if row.get("direction") in DIRECTIONS:
+            kept["direction"] = row["direction"]
+        METRIC_INFO[name] = kept
+
+
 def label_of(name):
-    return METRICS.get(name, (name,))[0]
+    return METRIC_INFO.get(name, {}).get("label") or METRICS.get(name, (name,))[0]
+
+
+def direction_of(name):
+    return METRIC_INFO.get(name, {}).get("direction") or METRICS.get(name, ("", "min"))[1]
+
+
+def description_of(name):
+    """The metric's explanation, or None where neither metric_info nor METRICS has one."""
+    return METRIC_INFO.get(name, {}).get("description") or (METRICS[name][2] if name in METRICS else None)
+
+
+def unit_of(units, name, default=""):
+    """The metric's unit from summary.json "units", else from "metric_info", else default."""
+    return units.get(name) or METRIC_INFO.get(name, {}).get("unit") or default
 
 
 # ------------------------------------------------------------------ small helpers
-def esc(x):
-    return html.escape(str(x), quote=True)
-
-
 def finite(x):
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
 
@@ -277,6 +321,7 @@ class Figures:
         self.files = []  # (title, [relative paths])
 
     def save(self, fig, name, title, inline=True):
+        """Writes the figure; returns {"svg": its SVG element, "title"} for inlining, or None."""
         matplotlib.rcParams["svg.hashsalt"] = "glintlab-" + name
         buf = io.BytesIO()
         fig.savefig(buf, format="svg", metadata={"Date": None})
@@ -288,11 +333,9 @@ class Figures:
         plt.close(fig)
         self.files.append((title, [f"figures/{name}.svg", f"figures/{name}.pdf"]))
         if not inline:
-            return ""
+            return None
         text = svg.decode("utf-8")
-        start = text.find("<svg")
-        text = text[start:]
-        return f'<div class="plot" role="img" aria-label="{esc(title)}">{text}</div>'
+        return {"svg": text[text.find("<svg"):], "title": title}
 
     def add_file(self, title, rel):
         for t, paths in self.files:
@@ -346,13 +389,11 @@ def pareto_front(points, floors=None):
     return sorted(front, key=lambda p: (p[0], p[1]))
 
 
-def floor_text(reference):
-    """The facts line's account of a truth's noise floor (summary.json references[].floor), or ""."""
+def floor_items(reference):
+    """[(label, value)] of a truth's noise floor (summary.json references[].floor) for the facts list."""
     floor = reference.get("floor") or {}
-    shown = [m for m in ("deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag")
-             if isinstance(floor.get(m), (int, float))]
-    return ("; its noise floor (half its halves' difference): " + ", ".join(
-        f"{esc(label_of(m))} {fmt(floor[m])}" for m in shown)) if shown else ""
+    return [(label_of(m), floor[m]) for m in ("deltaE2000", "flip", "temporal_error_mc", "flicker_excess",
+                                                "temporal_lag") if isinstance(floor.get(m), (int, float))]
 
 
 def floor_of(summary, variant_name, metric):
@@ -439,11 +480,12 @@ def legend_handles(summary, colors, markers):
 
 
 # ------------------------------------------------------------------ crops
-def box_sum(a, kh, kw):
-    """Sums of every kh x kw window of a (valid positions only)."""
-    s = np.zeros((a.shape[0] + 1, a.shape[1] + 1), dtype=np.float64)
-    s[1:, 1:] = np.cumsum(np.cumsum(a, axis=0), axis=1)
-    return s[kh:, kw:] - s[:-kh, kw:] - s[kh:, :-kw] + s[:-kh, :-kw]
+def box_mean(a, kh, kw):
+    """Means of every kh x kw window of a, indexed by the window's top-left corner (windows inside a
+    only). uniform_filter's window at index i covers i - k // 2 ... i - k // 2 + k - 1, so the window
+    that starts at row y is its value at row y + kh // 2 (columns likewise)."""
+    m = scipy.ndimage.uniform_filter(np.asarray(a, dtype=np.float64), size=(kh, kw), mode="constant")
+    return m[kh // 2:kh // 2 + a.shape[0] - kh + 1, kw // 2:kw // 2 + a.shape[1] - kw + 1]
 
 
 OUTLIER_MIN_EXCESS = 0.08  # display-encoded luma, 0..1
@@ -456,12 +498,10 @@ def luma(rgb8):
 
 
 def median7(y):
-    """Separable 7x7 median (rows, then columns): a local background level
+    """Separable 7x7 median (rows, then columns; the border pixels repeated): a local background level
     that edges do not drag around and a few-pixel glint does not move."""
-    from numpy.lib.stride_tricks import sliding_window_view
-    p = np.pad(y, 3, mode="edge")
-    rows = np.median(sliding_window_view(p, 7, axis=1), axis=-1)
-    return np.median(sliding_window_view(rows, 7, axis=0), axis=-1)
+    rows = scipy.ndimage.median_filter(y, size=(1, 7), mode="nearest")
+    return scipy.ndimage.median_filter(rows, size=(7, 1), mode="nearest")
 
 
 def bright_outliers(rgb8):
@@ -487,14 +527,15 @@ def choose_region(frames_rgb, cw, ch):
         maps.append(o)
         lums.append(y)
         acc += o
-    counts = box_sum(acc, ch, cw)
+    # Outlier counts are whole numbers: rounding takes away the filter's last-bit error in its means.
+    counts = np.rint(box_mean(acc, ch, cw) * (cw * ch))
     how = "outliers"
     if counts.max() <= 0:
         y = np.mean(lums, axis=0)
-        s1 = box_sum(y, ch, cw)
-        s2 = box_sum(y * y, ch, cw)
-        n = float(cw * ch)
-        counts = s2 / n - (s1 / n) ** 2
+        # Each window's luminance variance from float64 means: on the frames of `glintlab run default
+        # --frames 4 --resolution 320x180` within 2e-9 of the exact value, where cumulative sums of the
+        # float32 luma are off by up to 5e-4 (the windows chosen are the same).
+        counts = box_mean(y * y, ch, cw) - box_mean(y, ch, cw) ** 2
         how = "contrast"
     # Ties go to the window nearest the image centre.
     yy, xx = np.mgrid[0:counts.shape[0], 0:counts.shape[1]]
@@ -600,67 +641,29 @@ def encode_mp4(frames, fps, out_path):
 
 
 # ------------------------------------------------------------------ the report
-CSS = """
-:root { --fg:#1d2126; --muted:#5b6570; --line:#d9dee3; --accent:#2a5d8f; --bg:#fff; --soft:#f4f6f8; }
-* { box-sizing: border-box; }
-body { margin:0; background:var(--bg); color:var(--fg);
-       font: 15px/1.55 "DejaVu Sans", "Segoe UI", Roboto, Helvetica, Arial, sans-serif; }
-main { max-width: 1140px; margin: 0 auto; padding: 28px 28px 60px; }
-h1 { font-size: 26px; margin: 0 0 4px; }
-h1 small { font-weight: normal; color: var(--muted); font-size: 16px; }
-h2 { font-size: 20px; margin: 40px 0 8px; padding-top: 10px; border-top: 1px solid var(--line); }
-h3 { font-size: 16px; margin: 22px 0 6px; }
-p, li { max-width: 860px; }
-.lede { color: var(--muted); margin: 4px 0 18px; }
-.muted { color: var(--muted); }
-.note { background: var(--soft); border-left: 3px solid var(--accent); padding: 8px 12px; margin: 10px 0;
-        max-width: 860px; }
-.warn { background: #fff4e5; border-left: 3px solid #d9822b; padding: 8px 12px; margin: 10px 0; }
-dl.facts { display: grid; grid-template-columns: max-content 1fr; gap: 2px 18px; margin: 12px 0; font-size: 14px; }
-dl.facts dt { color: var(--muted); }
-dl.facts dd { margin: 0; }
-code { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 0.9em; background: var(--soft);
-       padding: 0 3px; border-radius: 3px; }
-nav { font-size: 14px; margin: 12px 0 0; }
-nav a { margin-right: 14px; }
-a { color: var(--accent); }
-.plot svg { max-width: 100%; height: auto; display: block; }
-figure { margin: 14px 0; }
-figcaption { color: var(--muted); font-size: 13.5px; max-width: 860px; margin-top: 4px; }
-.tablewrap { overflow-x: auto; border: 1px solid var(--line); border-radius: 4px; }
-table { border-collapse: collapse; font-size: 13px; white-space: nowrap; }
-th, td { padding: 5px 9px; border-bottom: 1px solid var(--line); text-align: right; vertical-align: top; }
-th { background: var(--soft); font-weight: 600; }
-th .unit { display: block; font-weight: normal; color: var(--muted); font-size: 11px; white-space: normal;
-           min-width: 70px; max-width: 150px; }
-td:first-child, th:first-child { text-align: left; position: sticky; left: 0; background: var(--bg); }
-th:first-child { background: var(--soft); }
-td.best, b.bestkey { font-weight: 700; color: #135e2e; }
-td.tied, i.tiedkey { color: #135e2e; font-style: italic; }
-td .sub { color: var(--muted); font-size: 11px; display: block; }
-tr:hover td { background: #fafbfc; }
-.crops { display: flex; flex-wrap: wrap; gap: 14px; }
-.crops figure { margin: 0; }
-.crops img { display: block; image-rendering: pixelated; border: 1px solid var(--line); }
-.crops figcaption { font-size: 12.5px; max-width: none; }
-.crops figcaption b { color: var(--fg); }
-img.frame { max-width: 100%; height: auto; image-rendering: pixelated; border: 1px solid var(--line); }
-img.anim { max-width: 100%; height: auto; image-rendering: pixelated; }
-.glossary dt { font-weight: 600; margin-top: 10px; }
-.glossary dd { margin: 2px 0 0 0; max-width: 860px; }
-.glossary .unit { color: var(--muted); font-size: 13px; }
-ul.files { font-size: 14px; }
-footer { margin-top: 50px; color: var(--muted); font-size: 12.5px; }
-"""
+SECTIONS = (("pareto", "error vs cost"), ("curves", "per frame"), ("table", "table"), ("crops", "glint crops"),
+            ("sequences", "sequences"), ("glossary", "metrics"), ("files", "files"))
+AA_SYMBOLS = {"none": "●", "ssaa": "■", "taa": "▲"}
+
+
+def template_env():
+    """The Jinja2 environment of templates/ (beside this script): autoescaped, block tags leave no
+    blank lines, a file's last newline stays (report.css's, the page's)."""
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATE_DIR), autoescape=True, trim_blocks=True,
+                             lstrip_blocks=True, keep_trailing_newline=True, undefined=jinja2.StrictUndefined)
+    env.filters["fmt"] = fmt
+    env.filters["label"] = label_of
+    return env
 
 
 class Report:
-    """One report: the run's data and the figures written so far; each
-    section method returns its HTML."""
+    """One report: the run's data and the figures written so far. Each section method draws its plots
+    and returns the data its template shows; write() renders templates/page.html.j2."""
 
     def __init__(self, run_dir):
         self.run_dir = run_dir
         self.summary, self.frames = load_run(run_dir)
+        use_metric_info(self.summary)
         self.figs = Figures(os.path.join(run_dir, "figures"))
         os.makedirs(self.figs.dir, exist_ok=True)
         setup_matplotlib()
@@ -670,251 +673,146 @@ class Report:
         self.markers = {v["name"]: AA_MARKERS.get(v.get("aa"), "D") for v in self.variants}
         self.units = self.summary.get("units") or {}
         self.measured = bool(self.summary.get("measured", True)) and any(v.get("metrics") for v in self.variants)
-        self.glance = []  # (metric, best point, front, variants within the floor of the best) for "at a glance"
-        self.sections = []  # (id, title) of the sections written, for the navigation
+        self.glance = []  # the "at a glance" items, one per Pareto metric
 
     def floor_of(self, variant_name, metric):
         return floor_of(self.summary, variant_name, metric)
+
+    def variant(self, name):
+        return next(v for v in self.variants if v["name"] == name)
 
     def within_floor(self, pts, best, metric):
         """The variants whose figure lies within the truth's noise floor of the best one's (same truth)."""
         f = self.floor_of(best[2], metric)
         if f is None:
             return []
-        ref = next(x for x in self.variants if x["name"] == best[2]).get("reference")
+        ref = self.variant(best[2]).get("reference")
         return [p[2] for p in pts if p[2] != best[2] and abs(p[3] - best[3]) < f
-                and next(x for x in self.variants if x["name"] == p[2]).get("reference") == ref]
+                and self.variant(p[2]).get("reference") == ref]
 
     def metric_stat(self, v, metric, key="mean"):
         return stat((v.get("metrics") or {}).get(metric), key)
 
-    # ------------------------------------------------------------ header
-    def header(self):
-        s, variants = self.summary, self.variants
-        res = s.get("resolution")
-        res_text = f"{res[0]}×{res[1]}" if isinstance(res, list) and len(res) == 2 else esc(res)
-        title = self.title()
-        description = ""
-        exp_file = s.get("file")
-        if isinstance(exp_file, str) and os.path.isfile(exp_file):
-            try:
-                with open(exp_file, encoding="utf-8") as f:
-                    description = json.load(f).get("description", "") or ""
-            except (OSError, ValueError, AttributeError):
-                description = ""
-        warm = s.get("timing_warmup_frames_excluded")
-        facts = [("experiment", esc(title) + (f" <span class=muted>({esc(exp_file)})</span>" if exp_file else "")),
-                 ("device", esc(s.get("device") or "none (frames read from files)")),
-                 ("glintlab version", esc(s.get("glintlab_version", "?"))),
-                 ("resolution", res_text + " px"),
-                 ("frames", esc(s.get("frames", "?")) + (
-                     f" <span class=muted>(GPU timings leave out the first {esc(warm)} as warm-up)</span>"
-                     if warm else "")),
-                 ("variants", str(len(variants))),
-                 ("working space", esc(s.get("working_space", "?")))]
-        if s.get("per_pixel_metrics_referred"):
-            facts.append(("per-pixel metrics", esc(s["per_pixel_metrics_referred"]) + "-referred"))
-        for r in [r for r in s.get("references") or [] if not r.get("frames")]:
-            g = stat(r.get("gpu_ms"))
-            cost = f", {fmt(g)} GPU ms/frame" if g is not None else ""
-            facts.append((f"reference “{esc(r.get('name'))}”",
-                          f"{esc(r.get('spp'))} samples per pixel (stratified, box filter){cost}; "
-                          f"{esc(r.get('frames_rendered', 0))} frames rendered, "
-                          f"{esc(r.get('frames_cached', 0))} from the cache" + floor_text(r)))
-        if s.get("command") == "measure":  # frames read from files (`glintlab measure`)
-            me = s.get("motion_explained") or {}
-            explained = ""
-            if isinstance(me.get("mean"), (int, float)):
-                explained = (f"; they explain the reference's change to {fmt(me['mean'])} of no motion (negated "
-                             f"{fmt(me.get('negated'))}, y flipped {fmt(me.get('flip_y'))}, x flipped "
-                             f"{fmt(me.get('flip_x'))}; lower is better)")
-            facts.append(("motion vectors", f"<b>{esc(s.get('motion', '?'))}</b>: {esc(s.get('motion_source', ''))}"
-                          + (f", convention {esc(s['motion_convention'])}" if s.get("motion_convention") else "")
-                          + explained))
-            facts.append(("disocclusion", esc(s.get("disocclusion", "?"))))
-            for r in s.get("references") or []:
-                if r.get("frames"):
-                    halves = r.get("frames_b")
-                    facts.append((f"reference “{esc(r.get('name'))}”", f"frames read from {esc(r['frames'])}"
-                                  + (f" and {esc(halves)}, two halves of the truth, which is their mean"
-                                     if halves else "") + (floor_text(r) or "; <b>no floor</b>: the reference "
-                                     "was given as one estimate (<code>--reference-b SEQ</code> gives its second "
-                                     "half, and with it the noise floor of every figure)")))
-        if stat(s.get("metric_ms_per_frame")) is not None:
-            facts.append(("measuring", f"{fmt(stat(s['metric_ms_per_frame']))} ms per variant frame (CPU)"))
-        facts.append(("run directory", esc(os.path.abspath(self.run_dir))))
-        facts.append(("report written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M")))
-        # Defects first: a reader must not miss them.
-        notes = [f"<p class=warn><b>Warning:</b> {esc(w)}</p>" for w in s.get("warnings") or []]
-        if s.get("motion") == "estimated":
-            notes.append("<p class=note>No motion vectors were given: flicker is measured along optical flow "
-                         "<b>estimated</b> from the frames (OpenCV DIS), which is wrong where the frames change for "
-                         "other reasons than motion (glints); give the renderer's vectors where it has them.</p>")
-        for v in variants:
-            bad = [(k, self.metric_stat(v, k, "max")) for k in ("nonfinite_pixels", "negative_pixels")]
-            bad = [(k, x) for k, x in bad if x]
-            if bad:
-                notes.append(f"<p class=warn><b>{esc(v['name'])}</b> has defective pixels: " + ", ".join(
-                    f"up to {fmt(x)} {esc(label_of(k))} per frame" for k, x in bad) + " (see frames.csv).</p>")
-        if not self.measured:
-            notes.append("<p class=note>This run was not measured (<code>glintlab render</code>, or no reference): "
-                         "the report shows timings and images only. <code>glintlab run</code> measures every frame "
-                         "against the reference.</p>")
-        glance = []
-        for metric, best, front, tied in self.glance:
-            cheapest = front[0] if front else None
-            extra = ""
-            if metric == "temporal_error_mc":
-                bv = next(v for v in self.variants if v["name"] == best[2])
-                extra = (f"; flicker excess {fmt(self.metric_stat(bv, 'flicker_excess'))}, lag "
-                         f"{fmt(self.metric_stat(bv, 'temporal_lag'))}")
-            g = (f"<li><b>{esc(label_of(metric))}</b>: {esc(best[2])} is best ({fmt(best[3])}"
-                 f"{' ratio' if metric == 'flicker_ratio' else ''}{extra}, {fmt(best[0])} ms/frame)")
-            if tied:
-                g += (f"; within the truth's noise floor ({fmt(self.floor_of(best[2], metric))}) of it, so as good "
-                      f"as far as this truth can tell: {esc(', '.join(tied))}")
-            if cheapest and cheapest[2] != best[2]:
-                g += (f"; the cheapest Pareto-optimal variant is {esc(cheapest[2])} ({fmt(cheapest[3])} at "
-                      f"{fmt(cheapest[0])} ms/frame)")
-            glance.append(g + ".</li>")
-        nav = "<nav>" + "".join(f"<a href=#{i}>{t}</a>" for i, t in self.sections) + "</nav>"
-        return (f"<h1>{esc(title)} <small>glintlab report</small></h1>"
-                + (f"<p class=lede>{esc(description)}</p>" if description else
-                   (f"<p class=lede>{len(variants)} sequence(s) read from files, measured "
-                    + ("against a reference" if s.get("references") else "without a reference") + ".</p>"
-                    if s.get("command") == "measure" else
-                    f"<p class=lede>{len(variants)} anti-aliasing variants against the ground truth.</p>"))
-                + "<dl class=facts>" + "".join(f"<dt>{k}</dt><dd>{v}</dd>" for k, v in facts) + "</dl>"
-                + "".join(notes)
-                + (f"<h3>At a glance</h3><ul>{''.join(glance)}</ul>" if glance else "")
-                + nav)
-
     def title(self):
         return self.summary.get("experiment") or os.path.basename(os.path.abspath(self.run_dir))
 
+    # ------------------------------------------------------------ header
+    def header(self):
+        """The data of templates/header.html.j2 (after the sections: it lists their best variants)."""
+        s = self.summary
+        exp_file = s.get("file")
+        res = s.get("resolution")
+        refs = s.get("references") or []
+        me = s.get("motion_explained") or {}
+        rendered = [{"name": r.get("name"), "spp": r.get("spp"), "gpu": stat(r.get("gpu_ms")),
+                     "rendered": r.get("frames_rendered", 0), "cached": r.get("frames_cached", 0),
+                     "floor": floor_items(r)} for r in refs if not r.get("frames")]
+        from_files = [{"name": r.get("name"), "frames": r["frames"], "frames_b": r.get("frames_b"),
+                       "floor": floor_items(r)} for r in refs if r.get("frames")]
+        return {"title": self.title(), "description": experiment_description(exp_file), "exp_file": exp_file,
+                "s": s, "n_variants": len(self.variants),
+                "resolution": f"{res[0]}×{res[1]}" if isinstance(res, list) and len(res) == 2 else res,
+                "rendered_refs": rendered, "file_refs": from_files,
+                "explained": me if isinstance(me.get("mean"), (int, float)) else None,
+                "measure_ms": stat(s.get("metric_ms_per_frame")), "run_dir": os.path.abspath(self.run_dir),
+                "written": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), "defects": self.defects(),
+                "measured": self.measured, "glance": self.glance}
+
+    def defects(self):
+        """[(variant, [(metric, worst per-frame count)])] of the variants with NaN/Inf or negative pixels."""
+        out = []
+        for v in self.variants:
+            bad = [(k, self.metric_stat(v, k, "max")) for k in ("nonfinite_pixels", "negative_pixels")]
+            bad = [(k, x) for k, x in bad if x]
+            if bad:
+                out.append((v["name"], bad))
+        return out
+
+    def temporal_detail(self, name):
+        """The flicker excess and lag of a variant, shown beside its temporal error."""
+        v = self.variant(name)
+        return self.metric_stat(v, "flicker_excess"), self.metric_stat(v, "temporal_lag")
+
     # ------------------------------------------------------------ error against cost
     def pareto(self):
+        """The Pareto section's data: its state, the plot and per metric the best and the front."""
         s = self.summary
-        head = "<h2 id=pareto>Error against cost</h2>"
         if not self.measured:
-            return head + "<p class=muted>No error metrics in this run.</p>"
+            return {"state": "unmeasured"}
         avail = [m for m in PARETO_METRICS if pareto_points(s, m)]
-        if not avail and s.get("command") == "measure":
-            return head + ("<p class=muted>The variants are frames read from files: they have no render cost "
-                           "here, so there is no error against cost (see the table and the per-frame curves).</p>")
         if not avail:
-            return head + "<p class=muted>None of ΔE00, FLIP and temporal error was measured in this run.</p>"
-        fig, axes = plt.subplots(1, len(avail), figsize=(3.7 * len(avail) + 0.4, 3.6), squeeze=False)
-        fronts = {}
-        for ax, metric in zip(axes[0], avail):
-            fronts[metric] = draw_pareto(ax, s, metric, self.colors, self.markers, len(self.variants) <= 12)
-        ncol = min(len(self.variants) + 1, 6)
-        fig.legend(handles=legend_handles(s, self.colors, self.markers), loc="lower center", ncol=ncol,
-                   frameon=False, bbox_to_anchor=(0.5, 0.0))
-        nrows_leg = math.ceil((len(self.variants) + 1) / ncol)
-        fig.tight_layout(rect=(0, 0.06 + 0.045 * nrows_leg, 1, 1))
-        svg = self.figs.save(fig, "pareto", "Error against GPU cost with Pareto fronts")
-        for metric in avail:  # one panel per file as well, for papers
-            f1, ax = plt.subplots(figsize=(4.6, 3.6))
-            draw_pareto(ax, s, metric, self.colors, self.markers, True)
-            f1.tight_layout()
-            self.figs.save(f1, f"pareto_{metric}", f"{label_of(metric)} against GPU cost", inline=False)
+            return {"state": "files" if s.get("command") == "measure" else "none"}
+        fronts = {m: None for m in avail}
+        svg = plot_pareto(self, avail, fronts)
         items = []
         for metric in avail:
             pts, front = fronts[metric]
             by = {p[2]: p for p in pts}
             best = min(pts, key=lambda p: p[1])
-            val = fmt(best[3]) + (f" (|ln| = {fmt(best[1])})" if metric in RATIO_METRICS else "")
-            if metric == "temporal_error_mc":
-                bv = next(v for v in s["variants"] if v["name"] == best[2])
-                val += (f" (flicker excess {fmt(self.metric_stat(bv, 'flicker_excess'))}, lag "
-                        f"{fmt(self.metric_stat(bv, 'temporal_lag'))})")
-            items.append(f"<li><b>{esc(label_of(metric))}</b>: best {esc(best[2])} at {val}, "
-                         f"{fmt(best[0])} GPU ms/frame. Pareto-optimal, cheapest first: "
-                         + ", ".join(f"{esc(p[2])} ({fmt(by[p[2]][3])} at {fmt(p[0])} ms)" for p in front) + ".</li>")
-            self.glance.append((metric, best, [by[p[2]] for p in front], self.within_floor(pts, best, metric)))
-        return (head
-                + "<p>Each point is one variant: x is its mean GPU time per frame (all passes, GPU timestamps), y its "
-                "mean error against the reference over all frames. A variant is <i>Pareto-optimal</i> (ringed, joined "
-                "by the dashed line) when no other variant is at most as costly and better; two errors closer than "
-                "their truth's noise floor (the bars) count as equal, so the front does not rank noise. Temporal stability is ranked "
-                "by the <b>temporal error along the motion</b> (the change that does not match the truth's); the "
-                "at-a-glance list gives the best variant's flicker excess (change beyond the truth's: twinkling) and "
-                "lag (the truth's change it lacks: smooth but wrong) beside it. The flicker ratio stays in the table "
-                "as a diagnostic: it ranks lag as if it were flicker.</p>"
-                f"<figure>{svg}<figcaption>Error against GPU cost. Markers: ● no AA, ■ SSAA, ▲ TAA. The x axis is "
-                "logarithmic when the costs span more than 8×. Single panels: "
-                "<code>figures/pareto_&lt;metric&gt;.svg|pdf</code>.</figcaption></figure>"
-                f"<ul>{''.join(items)}</ul>")
+            detail = self.temporal_detail(best[2]) if metric == "temporal_error_mc" else None
+            items.append({"metric": metric, "best": best, "ratio": metric in RATIO_METRICS, "detail": detail,
+                          "front": [by[p[2]] for p in front]})
+            tied = self.within_floor(pts, best, metric)
+            self.glance.append({"metric": metric, "best": best, "detail": detail, "tied": tied,
+                                "floor": self.floor_of(best[2], metric),
+                                "cheapest": by[front[0][2]] if front else None})
+        return {"state": "plotted", "svg": svg, "lines": items}
 
     # ------------------------------------------------------------ per-frame curves
     def curves(self):
-        frames, variants = self.frames, self.variants
-        metrics = [m for m in CURVE_METRICS if any(r.get(m) is not None for rows in frames.values() for r in rows)]
-        if not metrics:
-            return ""
-        fig, axes = plt.subplots(len(metrics), 1, figsize=(9.0, 2.7 * len(metrics) + 0.3), sharex=True,
-                                 squeeze=False)
-        nframes = max(len(rows) for rows in frames.values())
-        for ax, metric in zip(axes[:, 0], metrics):
-            for v in variants:
-                pts = [(r["frame"], r[metric]) for r in frames.get(v["name"], [])
-                       if r.get(metric) is not None and math.isfinite(r[metric])]
-                if pts:
-                    ax.plot([p[0] for p in pts], [p[1] for p in pts], lw=1.4, ms=4, color=self.colors[v["name"]],
-                            marker=self.markers[v["name"]] if nframes <= 40 else None, label=v["name"])
-            if metric == "flicker_ratio":
-                ax.axhline(1.0, color="black", lw=1.0, ls=":", label="reference (1)")
-                ax.set_ylabel("flicker ratio\n(1 = as stable as truth)")
-            else:
-                ax.set_ylabel(label_of(metric))
-            ax.set_title(f"{label_of(metric)} per frame", loc="left")
-        axes[-1, 0].set_xlabel("frame")
-        axes[-1, 0].xaxis.get_major_locator().set_params(integer=True)
-        handles, labels = [], []
-        for ax in axes[:, 0]:
-            for h, l in zip(*ax.get_legend_handles_labels()):
-                if l not in labels:
-                    handles.append(h)
-                    labels.append(l)
-        fig.legend(handles, labels, loc="center right", frameon=False, fontsize=8 if len(labels) <= 18 else 6.5)
-        fig.tight_layout(rect=(0, 0, 0.80, 1))
-        svg = self.figs.save(fig, "per_frame", "Per-frame flicker ratio and ΔE00")
-        return ("<h2 id=curves>Per frame</h2>"
-                "<p>The same metrics frame by frame. Flicker ratio compares consecutive frames, so it starts at frame "
-                "1; the dotted line at 1 is the reference's own amount of change. Spikes are frames where a variant "
-                "changes much more than the truth (a glint popping in or out); a TAA variant that starts high and "
-                "settles shows its history converging.</p>"
-                f"<figure>{svg}<figcaption>Per-frame values from <code>frames.csv</code>.</figcaption></figure>")
+        """The per-frame plot's SVG, or None where frames.csv has none of CURVE_METRICS."""
+        metrics = [m for m in CURVE_METRICS if any(r.get(m) is not None for rows in self.frames.values() for r in rows)]
+        return plot_curves(self, metrics) if metrics else None
 
     # ------------------------------------------------------------ table of means
     def table(self):
-        variants, units = self.variants, self.units
         passes = []
-        for v in variants:
+        for v in self.variants:
             for p in (v.get("gpu_ms_per_pass") or {}):
                 if p not in passes:
                     passes.append(p)
+        cols = self.table_columns(passes)
+        best, tied = self.table_best(cols)
+        rows = []
+        for v in self.variants:
+            cells = []
+            for key, _, _, _ in cols:
+                mean, p95 = self.cell(v, key)
+                cls = "best" if v["name"] in best.get(key, ()) else "tied" if v["name"] in tied.get(key, ()) else ""
+                floor = self.floor_of(v["name"], key[7:]) if key.startswith("metric:") else None
+                cells.append({"cls": cls, "mean": mean, "p95": p95, "floor": floor})
+            rows.append({"v": v, "color": matplotlib.colors.to_hex(self.colors[v["name"]]),
+                         "symbol": AA_SYMBOLS.get(v.get("aa"), "◆"), "cells": cells})
+        return {"cols": cols, "rows": rows, "settings": self.settings(), "gpu_svg": plot_gpu_passes(self, passes)}
+
+    def table_columns(self, passes):
+        """[(key, label, unit, direction)]: the GPU time, each pass's, and each metric the run has."""
+        variants, units = self.variants, self.units
         present = [m for m in TABLE_METRICS if any(m in (v.get("metrics") or {}) for v in variants)]
         # Defect counts only when there is a defect; they are 0 otherwise.
         present = [m for m in present if m not in ("nonfinite_pixels", "negative_pixels")
                    or any(self.metric_stat(v, m, "max") for v in variants)]
         cols = [("gpu", "GPU ms/frame", units.get("gpu_ms", "ms (GPU timestamps)"), "min")]
         cols += [("pass:" + p, f"GPU ms: {p}", units.get("gpu_ms_" + p, "ms (GPU timestamps)"), "min") for p in passes]
-        cols += [("metric:" + m, label_of(m), units.get(m, ""), METRICS.get(m, ("", "min"))[1]) for m in present]
+        cols += [("metric:" + m, label_of(m), unit_of(units, m), direction_of(m)) for m in present]
+        return cols
 
-        def cell(v, key):
-            if key == "gpu":
-                d = v.get("gpu_ms")
-            elif key.startswith("pass:"):
-                d = (v.get("gpu_ms_per_pass") or {}).get(key[5:])
-            else:
-                d = (v.get("metrics") or {}).get(key[7:])
-            return stat(d), stat(d, "p95")
+    @staticmethod
+    def cell(v, key):
+        """(mean, p95) of a table column's key for variant v."""
+        if key == "gpu":
+            d = v.get("gpu_ms")
+        elif key.startswith("pass:"):
+            d = (v.get("gpu_ms_per_pass") or {}).get(key[5:])
+        else:
+            d = (v.get("metrics") or {}).get(key[7:])
+        return stat(d), stat(d, "p95")
 
+    def table_best(self, cols):
+        """({key: names of the best}, {key: names within the truth's noise floor of the best})."""
         best, tied = {}, {}
         for key, _, _, direction in cols:
-            vals = [(cell(v, key)[0], v) for v in variants]
+            vals = [(self.cell(v, key)[0], v) for v in self.variants]
             vals = [(x, v) for x, v in vals if x is not None]
             if len(vals) < 2 or direction == "none":
                 continue
@@ -936,170 +834,167 @@ class Report:
                     if f is not None:
                         tied[key] = {v["name"] for d, v in dist
                                      if d != target and d - target < f and v.get("reference") == ref}
-        head = ("<tr><th>variant</th><th>AA<span class=unit>method</span></th><th>spp<span class=unit>samples per "
-                "pixel</span></th>" + "".join(f"<th>{esc(lab)}<span class=unit>{esc(u)}</span></th>"
-                                              for _, lab, u, _ in cols) + "</tr>")
-        body = []
-        for v in variants:
-            symbol = {"none": "●", "ssaa": "■", "taa": "▲"}.get(v.get("aa"), "◆")
-            cells = [f"<td><span style='color:{matplotlib.colors.to_hex(self.colors[v['name']])}'>{symbol}</span> "
-                     f"{esc(v['name'])}</td>", f"<td>{esc(v.get('aa', ''))}</td>", f"<td>{esc(v.get('spp', ''))}</td>"]
-            for key, _, _, _ in cols:
-                mean, p95 = cell(v, key)
-                cls = (" class=best" if v["name"] in best.get(key, ()) else
-                       " class=tied" if v["name"] in tied.get(key, ()) else "")
-                floor = self.floor_of(v["name"], key[7:]) if key.startswith("metric:") else None
-                floor_text = f" · floor {fmt(floor)}" if floor is not None else ""
-                sub = (f"<span class=sub>p95 {fmt(p95)}{floor_text}</span>" if p95 is not None and mean is not None
-                       else "")
-                cells.append(f"<td{cls}>{fmt(mean)}{sub}</td>")
-            body.append("<tr>" + "".join(cells) + "</tr>")
-        return ("<h2 id=table>Means per variant</h2>"
-                "<p>Mean over frames, with the 95th percentile over frames in small print. GPU times leave out the "
-                "warm-up frames; temporal metrics start at frame 1. <b class=bestkey>Bold green</b> marks the best "
-                "value of a column (flicker ratio: closest to 1; glint density: closest to the reference's; PSNR: "
-                "highest; otherwise lowest); <i class=tiedkey>green italics</i> a value within the noise floor of its truth "
-                "(printed beside each figure: half the difference of the truth's two halves) of the best one, as "
-                "good as far as that truth can tell. Units under each heading; <a href=#glossary>what each metric "
-                "means</a>.</p>"
-                f"<div class=tablewrap><table><thead>{head}</thead><tbody>{''.join(body)}</tbody></table></div>"
-                + self.settings() + self.gpu_passes(passes))
+        return best, tied
 
     def settings(self):
+        """The variants' settings list: [(variant, {"taa": own options | "ssaa" | ...})] and the TAA
+        options every TAA variant shares."""
         variants = self.variants
-
-        def opt_text(k, x):
-            x = json.dumps(x) if isinstance(x, bool) else (fmt(x) if isinstance(x, float) else x)
-            return f"{esc(k)} = {esc(x)}"
-
         taa = [v for v in variants if isinstance(v.get("taa"), dict)]
         shared = {}
         if len(taa) > 1:
             shared = {k: x for k, x in taa[0]["taa"].items() if all(v["taa"].get(k, object()) == x for v in taa)}
         items = []
-        models = {v.get("glint_model") for v in variants}
         for v in variants:
-            if isinstance(v.get("taa"), dict):
-                own = {k: x for k, x in v["taa"].items() if k not in shared}
-                text = "TAA, " + (", ".join(opt_text(k, x) for k, x in own.items()) if own else "the shared options")
-            elif v.get("aa") == "ssaa":
-                g = v.get("ssaa_grid", "?")
-                text = f"SSAA, {esc(g)}×{esc(g)} stratified jittered samples per pixel, the same pattern every frame"
-            elif v.get("aa") == "none":
-                text = "no AA, one sample at each pixel centre"
-            elif v.get("source") == "frames":
-                text = f"frames read from <code>{esc(v.get('frames', '?'))}</code>"
-            else:
-                text = esc(v.get("aa", "?"))
-            if len(models) > 1:
-                text += f"; glint model {esc(v.get('glint_model'))}"
-            if v.get("debug") not in (None, "final"):
-                text += f"; debug output {esc(v.get('debug'))}"
-            items.append(f"<li><b>{esc(v['name'])}</b>: {text}</li>")
-        return ("<h3>Variant settings</h3><ul>" + "".join(items) + "</ul>"
-                + (f"<p class=muted>Shared by all TAA variants: {', '.join(opt_text(k, x) for k, x in shared.items())}."
-                   "</p>" if shared else ""))
+            own = ({k: x for k, x in v["taa"].items() if k not in shared} if isinstance(v.get("taa"), dict)
+                   else None)
+            items.append({"v": v, "own": None if own is None else [(k, option_text(x)) for k, x in own.items()]})
+        return {"lines": items, "shared": [(k, option_text(x)) for k, x in shared.items()],
+                "models": len({v.get("glint_model") for v in variants}) > 1}
 
-    def gpu_passes(self, passes):
-        variants = self.variants
-        if not passes or all(stat(v.get("gpu_ms")) is None for v in variants):
-            return ""
-        fig, ax = plt.subplots(figsize=(8.0, 0.9 + 0.32 * len(variants)))
-        left = np.zeros(len(variants))
-        pcm = plt.get_cmap("Set2")
-        for i, p in enumerate(passes):
-            vals = np.array([stat((v.get("gpu_ms_per_pass") or {}).get(p)) or 0.0 for v in variants])
-            ax.barh(range(len(variants)), vals, left=left, color=pcm(i % 8), label=p, edgecolor="white", lw=0.5)
-            left += vals
-        for i, v in enumerate(variants):
-            g = stat(v.get("gpu_ms"))
-            if g is not None:
-                ax.text(left[i], i, f"  {fmt(g)} ms", va="center", fontsize=8)
-        ax.set_yticks(range(len(variants)))
-        ax.set_yticklabels(self.names)
-        ax.invert_yaxis()
-        ax.set_xlabel("GPU ms / frame (mean per pass)")
-        ax.set_xlim(0, max(float(left.max()), 1e-9) * 1.18)
-        ax.grid(axis="y", visible=False)
-        ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), frameon=False, ncol=len(passes), title="pass",
-                  title_fontsize=8)
-        fig.tight_layout()
-        return (f"<figure>{self.figs.save(fig, 'gpu_per_pass', 'GPU time per pass')}"
-                "<figcaption>GPU time per frame split by render pass (mean over frames; the number is the whole "
-                "frame's mean, which need not equal the sum of the pass means exactly).</figcaption></figure>")
-
-    # ------------------------------------------------------------ glossary and files
+    # ------------------------------------------------------------ glossary
     def glossary(self):
         units, present = self.units, set()
         for v in self.variants:
             present.update((v.get("metrics") or {}).keys())
-        items = []
-        for m in TABLE_METRICS + ["relative", "frame_diff_ratio"]:
-            if m in present:
-                u = units.get(m, "")
-                items.append(f"<dt>{esc(label_of(m))} <code>{esc(m)}</code></dt><dd>{esc(METRICS[m][2])}"
-                             + (f"<br><span class=unit>unit: {esc(u)}</span>" if u else "") + "</dd>")
         pooled = sorted({int(k.rsplit("_", 1)[1]) for k in present
                          if k.startswith(("pooled_bias_", "pooled_rms_")) and k.rsplit("_", 1)[1].isdigit()})
-        if pooled:
-            items.append("<dt>pooled bias and RMS <code>pooled_bias_N</code>, <code>pooled_rms_N</code></dt><dd>Mean "
-                         "and RMS of the difference of N×N-pixel block means of luminance, for N = "
-                         + ", ".join(map(str, pooled)) + ": how the error falls as the image is averaged "
-                         "over larger blocks (pooled error is the RMS at 8).<br><span class=unit>unit: "
-                         f"{esc(units.get('pooled_rms_%d' % pooled[0], 'Y (block means)'))}</span></dd>")
-        others = sorted(k for k in present if k not in METRICS and not k.endswith("_max")
-                        and not k.startswith(("pooled_bias_", "pooled_rms_")))
-        if others:
-            items.append("<dt>also in summary.json and frames.csv</dt><dd>" + ", ".join(
-                f"<code>{esc(k)}</code>" + (f" <span class=unit>({esc(units[k])})</span>" if units.get(k) else "")
-                for k in others) + "</dd>")
-        if any(k.endswith("_max") for k in present):
-            items.append("<dt><code>&lt;metric&gt;_max</code></dt><dd>The worst pixel of each frame for that metric "
-                         "(its mean over frames in summary.json).</dd>")
-        items.append("<dt>GPU ms/frame <code>gpu_ms</code></dt><dd>GPU time of one frame from timestamp queries, "
-                     "all passes; per pass in <code>gpu_ms_&lt;pass&gt;</code>. Device: "
-                     f"{esc(self.summary.get('device', '?'))}. Compare variants within one run: timings drift "
-                     "between runs, above all on a software rasteriser.<br><span class=unit>unit: "
-                     f"{esc(units.get('gpu_ms', 'ms'))}</span></dd>")
-        return ("<h2 id=glossary>Metrics</h2><dl class=glossary>" + "".join(items) + "</dl>"
-                "<p class=muted>Per-pixel colour metrics compare test and reference through OCIO in CIE XYZ "
-                f"({esc(self.summary.get('per_pixel_metrics_referred', 'scene'))}-referred); flicker, temporal, glint "
-                "and pooled statistics are scene-referred. Units are those summary.json lists.</p>")
-
-    def files(self):
-        items = "".join(f"<li>{esc(t)}: " + ", ".join(f"<a href='{esc(p)}'>{esc(p)}</a>" for p in ps) + "</li>"
-                        for t, ps in self.figs.files)
-        return ("<h2 id=files>Files</h2><p>Beside this report in the run directory (the links work while the "
-                "directory stays together; this page itself needs none of them):</p>"
-                "<ul class=files><li>data: <a href='summary.json'>summary.json</a>, <a href='frames.csv'>frames.csv"
-                f"</a></li>{items}</ul>")
+        rest = sorted(k for k in present if k not in METRICS and not k.endswith("_max")
+                      and not k.startswith(("pooled_bias_", "pooled_rms_")))
+        # The report's own order first, then what metric_info alone describes, then the rest by name.
+        order = [m for m in TABLE_METRICS + ["relative", "frame_diff_ratio"] if m in present]
+        order += [k for k in rest if description_of(k)]
+        described = [(m, description_of(m), unit_of(units, m)) for m in order]
+        others = [k for k in rest if not description_of(k)]
+        return {"described": described, "pooled": pooled,
+                "pooled_unit": units.get("pooled_rms_%d" % pooled[0], "Y (block means)") if pooled else "",
+                "others": [(k, unit_of(units, k, None)) for k in others],
+                "has_max": any(k.endswith("_max") for k in present),
+                "device": self.summary.get("device", "?"), "gpu_unit": units.get("gpu_ms", "ms"),
+                "referred": self.summary.get("per_pixel_metrics_referred", "scene")}
 
     # ------------------------------------------------------------ the page
     def write(self):
         # The crops and sequences (image work in Pillow) run in a forked process while this one draws
         # the plots (matplotlib): on two cores the report takes the longer of the two, not the sum.
         crops = start_crops(self)
-        plots = [self.pareto(), self.curves(), self.table()]
-        crops_html, crops_files = crops()
+        page = {"pareto": self.pareto(), "curves": self.curves(), "table": self.table()}
+        page["crops"], crops_files = crops()
         for title, paths in crops_files:
             for rel in paths:
                 self.figs.add_file(title, rel)
-        body = plots + [crops_html, self.glossary(), self.files()]
-        text = "".join(body)
-        self.sections = [(i, t) for i, t in (("pareto", "error vs cost"), ("curves", "per frame"), ("table", "table"),
-                                             ("crops", "glint crops"), ("sequences", "sequences"),
-                                             ("glossary", "metrics"), ("files", "files")) if f"<h2 id={i}>" in text]
+        page["glossary"] = self.glossary()
+        page["files"] = self.figs.files
+        shown = {"pareto", "table", "crops", "glossary", "files"}
+        shown |= {"curves"} if page["curves"] is not None else set()
+        shown |= {"sequences"} if page["crops"] is not None else set()
         s = self.summary
-        doc = ("<!DOCTYPE html><html lang=en><head><meta charset=utf-8>"
-               "<meta name=viewport content='width=device-width, initial-scale=1'>"
-               f"<title>{esc(self.title())}: glintlab report</title><style>{CSS}</style></head><body><main>"
-               + self.header() + text
-               + f"<footer>glintlab {esc(s.get('glintlab_version', '?'))} · {esc(s.get('schema'))} · written by "
-                 f"experiments/report/glintlab_report.py with matplotlib {esc(matplotlib.__version__)} and Pillow "
-                 f"{esc(getattr(__import__('PIL'), '__version__', '?'))}</footer></main></body></html>\n")
+        doc = template_env().get_template("page.html.j2").render(
+            page, header=self.header(), nav=[(i, t) for i, t in SECTIONS if i in shown],
+            version=s.get("glintlab_version", "?"), schema=s.get("schema"), matplotlib_version=matplotlib.__version__,
+            pil_version=getattr(__import__("PIL"), "__version__", "?"),
+            outlier_min_excess=f"{OUTLIER_MIN_EXCESS:g}", outlier_top_percent=f"{100 * OUTLIER_TOP_FRACTION:g}")
         out = os.path.join(self.run_dir, "report.html")
         write_bytes(out, doc.encode("utf-8"))
         return out
+
+
+def experiment_description(exp_file):
+    """The experiment file's "description", or "" where it is not readable."""
+    if not (isinstance(exp_file, str) and os.path.isfile(exp_file)):
+        return ""
+    try:
+        with open(exp_file, encoding="utf-8") as f:
+            return json.load(f).get("description", "") or ""
+    except (OSError, ValueError, AttributeError):
+        return ""
+
+
+def option_text(x):
+    """A TAA option's value as the settings list prints it."""
+    return json.dumps(x) if isinstance(x, bool) else (fmt(x) if isinstance(x, float) else x)
+
+
+# ------------------------------------------------------------------ the report's plots
+def plot_pareto(rep, avail, fronts):
+    """Draws the Pareto panels side by side (inline) and one file each; fills fronts[metric] with
+    (points, front)."""
+    s, figs = rep.summary, rep.figs
+    fig, axes = plt.subplots(1, len(avail), figsize=(3.7 * len(avail) + 0.4, 3.6), squeeze=False)
+    for ax, metric in zip(axes[0], avail):
+        fronts[metric] = draw_pareto(ax, s, metric, rep.colors, rep.markers, len(rep.variants) <= 12)
+    ncol = min(len(rep.variants) + 1, 6)
+    fig.legend(handles=legend_handles(s, rep.colors, rep.markers), loc="lower center", ncol=ncol,
+               frameon=False, bbox_to_anchor=(0.5, 0.0))
+    nrows_leg = math.ceil((len(rep.variants) + 1) / ncol)
+    fig.tight_layout(rect=(0, 0.06 + 0.045 * nrows_leg, 1, 1))
+    svg = figs.save(fig, "pareto", "Error against GPU cost with Pareto fronts")
+    for metric in avail:  # one panel per file as well, for papers
+        f1, ax = plt.subplots(figsize=(4.6, 3.6))
+        draw_pareto(ax, s, metric, rep.colors, rep.markers, True)
+        f1.tight_layout()
+        figs.save(f1, f"pareto_{metric}", f"{label_of(metric)} against GPU cost", inline=False)
+    return svg
+
+
+def plot_curves(rep, metrics):
+    """Draws the per-frame curves of metrics, one panel each; returns the inline SVG."""
+    frames, variants = rep.frames, rep.variants
+    fig, axes = plt.subplots(len(metrics), 1, figsize=(9.0, 2.7 * len(metrics) + 0.3), sharex=True,
+                             squeeze=False)
+    nframes = max(len(rows) for rows in frames.values())
+    for ax, metric in zip(axes[:, 0], metrics):
+        for v in variants:
+            pts = [(r["frame"], r[metric]) for r in frames.get(v["name"], [])
+                   if r.get(metric) is not None and math.isfinite(r[metric])]
+            if pts:
+                ax.plot([p[0] for p in pts], [p[1] for p in pts], lw=1.4, ms=4, color=rep.colors[v["name"]],
+                        marker=rep.markers[v["name"]] if nframes <= 40 else None, label=v["name"])
+        if metric == "flicker_ratio":
+            ax.axhline(1.0, color="black", lw=1.0, ls=":", label="reference (1)")
+            ax.set_ylabel("flicker ratio\n(1 = as stable as truth)")
+        else:
+            ax.set_ylabel(label_of(metric))
+        ax.set_title(f"{label_of(metric)} per frame", loc="left")
+    axes[-1, 0].set_xlabel("frame")
+    axes[-1, 0].xaxis.get_major_locator().set_params(integer=True)
+    handles, labels = [], []
+    for ax in axes[:, 0]:
+        for h, l in zip(*ax.get_legend_handles_labels()):
+            if l not in labels:
+                handles.append(h)
+                labels.append(l)
+    fig.legend(handles, labels, loc="center right", frameon=False, fontsize=8 if len(labels) <= 18 else 6.5)
+    fig.tight_layout(rect=(0, 0, 0.80, 1))
+    return rep.figs.save(fig, "per_frame", "Per-frame flicker ratio and ΔE00")
+
+
+def plot_gpu_passes(rep, passes):
+    """The per-pass GPU time bars' SVG, or None without GPU times."""
+    variants = rep.variants
+    if not passes or all(stat(v.get("gpu_ms")) is None for v in variants):
+        return None
+    fig, ax = plt.subplots(figsize=(8.0, 0.9 + 0.32 * len(variants)))
+    left = np.zeros(len(variants))
+    pcm = plt.get_cmap("Set2")
+    for i, p in enumerate(passes):
+        vals = np.array([stat((v.get("gpu_ms_per_pass") or {}).get(p)) or 0.0 for v in variants])
+        ax.barh(range(len(variants)), vals, left=left, color=pcm(i % 8), label=p, edgecolor="white", lw=0.5)
+        left += vals
+    for i, v in enumerate(variants):
+        g = stat(v.get("gpu_ms"))
+        if g is not None:
+            ax.text(left[i], i, f"  {fmt(g)} ms", va="center", fontsize=8)
+    ax.set_yticks(range(len(variants)))
+    ax.set_yticklabels(rep.names)
+    ax.invert_yaxis()
+    ax.set_xlabel("GPU ms / frame (mean per pass)")
+    ax.set_xlim(0, max(float(left.max()), 1e-9) * 1.18)
+    ax.grid(axis="y", visible=False)
+    ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), frameon=False, ncol=len(passes), title="pass",
+              title_fontsize=8)
+    fig.tight_layout()
+    return rep.figs.save(fig, "gpu_per_pass", "GPU time per pass")
 
 
 # ------------------------------------------------------------------ crops and sequences
@@ -1108,15 +1003,15 @@ MAX_ANIMATION_PIXELS = 1_600_000  # per animation frame
 
 
 def crops_in_child(rep):
-    """crops_section in a forked child: its HTML and the files it listed."""
+    """crops_section in a forked child: its data and the files it listed."""
     rep.figs.files = []
-    html_ = crops_section(rep)
-    return html_, rep.figs.files
+    data = crops_section(rep)
+    return data, rep.figs.files
 
 
 def start_crops(rep):
     """Starts crops_section(rep) in a forked process and returns a function that waits for it and
-    gives (html, [(title, [paths])]); where no process can be forked, it runs here when asked. An
+    gives (data, [(title, [paths])]); where no process can be forked, it runs here when asked. An
     exception in the child (bad input, an I/O error, a bug) is raised again by the function."""
     try:
         pool = concurrent.futures.ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("fork"))
@@ -1132,211 +1027,202 @@ def start_crops(rep):
     return wait
 
 
-def crops_section(rep):
-    run_dir, summary, frames, figs = rep.run_dir, rep.summary, rep.frames, rep.figs
-    variants = rep.variants
-    # Rows shown: each reference once (first), then the variants in run order.
-    rows = []
-    for r in summary.get("references") or []:
-        if isinstance(r.get("name"), str):
-            rows.append((r["name"], "reference", r))
-    for v in variants:
-        rows.append((v["name"], "variant", v))
-    pngs = {name: png_frames(run_dir, name) for name, _, _ in rows}
-    rows = [r for r in rows if pngs[r[0]]]
-    if not rows:
-        msg = ("<p class=note>No PNG previews in this run directory (the experiment's <code>output.png</code> is "
-               "false), so there are no crops or sequences. <code>\"output\": {\"png\": true}</code> writes them."
-               "</p>")
-        return "<h2 id=crops>Glint crops</h2>" + msg
-    common = sorted(set.intersection(*[set(pngs[n]) for n, _, _ in rows])) or sorted(pngs[rows[0][0]])
-    region_source = rows[0][0]
-    # The region is chosen on at most 16 frames spread over the sequence.
-    sel = sorted({round(i * (len(common) - 1) / 15) for i in range(16)}) if len(common) > 16 else \
-        list(range(len(common)))
-    h, w = load_rgb(pngs[region_source][common[0]]).shape[:2]
-    src, src_frames = [], []
-    for i in sel:
-        a = load_rgb(pngs[region_source][common[i]])
-        if a.shape[:2] == (h, w):
-            src.append(a)
-            src_frames.append(common[i])
-    side = int(min(64, max(8, min(w, h) // 4)))
-    cw, ch = min(side, w), min(side, h)
-    x0, y0, how, per_frame, total = choose_region(src, cw, ch)
-    crop_frame = src_frames[int(np.argmax(per_frame))] if max(per_frame) > 0 else src_frames[len(src_frames) // 2]
-    scale = int(max(2, min(16, 256 // max(cw, ch))))
+class CropSource:
+    """The rows the crops show (each reference once, first, then the variants in run order) with their
+    PNG previews, the frames all of them have, and the crop region."""
 
-    def load(name, frame):
-        p = pngs[name].get(frame)
+    def __init__(self, rep):
+        summary = rep.summary
+        rows = [(r["name"], "reference", r) for r in summary.get("references") or [] if isinstance(r.get("name"), str)]
+        rows += [(v["name"], "variant", v) for v in rep.variants]
+        self.pngs = {name: png_frames(rep.run_dir, name) for name, _, _ in rows}
+        self.rows = [r for r in rows if self.pngs[r[0]]]
+        if not self.rows:
+            return
+        pngs = self.pngs
+        self.common = sorted(set.intersection(*[set(pngs[n]) for n, _, _ in self.rows])) or \
+            sorted(pngs[self.rows[0][0]])
+        self.region_source = self.rows[0][0]
+        self.h, self.w = load_rgb(pngs[self.region_source][self.common[0]]).shape[:2]
+        self.choose_region()
+
+    def choose_region(self):
+        """The crop window, chosen on at most 16 frames spread over the sequence, and the frame shown."""
+        common, h, w = self.common, self.h, self.w
+        sel = sorted({round(i * (len(common) - 1) / 15) for i in range(16)}) if len(common) > 16 else \
+            list(range(len(common)))
+        src, src_frames = [], []
+        for i in sel:
+            a = load_rgb(self.pngs[self.region_source][common[i]])
+            if a.shape[:2] == (h, w):
+                src.append(a)
+                src_frames.append(common[i])
+        side = int(min(64, max(8, min(w, h) // 4)))
+        self.cw, self.ch = min(side, w), min(side, h)
+        self.x0, self.y0, self.how, per_frame, self.total = choose_region(src, self.cw, self.ch)
+        self.n_src = len(src)
+        self.crop_frame = (src_frames[int(np.argmax(per_frame))] if max(per_frame) > 0
+                           else src_frames[len(src_frames) // 2])
+        self.scale = int(max(2, min(16, 256 // max(self.cw, self.ch))))
+
+    def load(self, name, frame):
+        p = self.pngs[name].get(frame)
         if p is None:
             return None
         a = load_rgb(p)
-        return a if a.shape[:2] == (h, w) else None
+        return a if a.shape[:2] == (self.h, self.w) else None
 
-    def crop(a, s):
+    def crop(self, a, s):
         if a is None:
-            return np.zeros((ch * s, cw * s, 3), np.uint8)
-        return upscale(a[y0:y0 + ch, x0:x0 + cw], s)
+            return np.zeros((self.ch * s, self.cw * s, 3), np.uint8)
+        return upscale(a[self.y0:self.y0 + self.ch, self.x0:self.x0 + self.cw], s)
 
-    def csv_value(name, frame, metric):
-        for r in frames.get(name, []):
-            if r["frame"] == frame:
-                return r.get(metric)
-        return None
 
-    # Where the region is, on the frame the crops show.
-    ov = Image.fromarray(load_rgb(pngs[region_source][crop_frame]))
+def region_overview(src, figs):
+    """The frame the crops show with the region outlined, written to figures/; (PNG bytes, width, height)."""
+    ov = Image.fromarray(load_rgb(src.pngs[src.region_source][src.crop_frame]))
     ov_scale = max(1, 480 // ov.width)
     if ov_scale > 1:
         ov = ov.resize((ov.width * ov_scale, ov.height * ov_scale), Image.NEAREST)
     d = ImageDraw.Draw(ov)
     lw = max(2, ov_scale)
+    x0, y0, cw, ch = src.x0, src.y0, src.cw, src.ch
     for i in range(lw):
         d.rectangle([x0 * ov_scale - lw + i, y0 * ov_scale - lw + i, (x0 + cw) * ov_scale + lw - 1 - i,
                      (y0 + ch) * ov_scale + lw - 1 - i], outline=(230, 40, 40) if i < lw - 1 else (255, 255, 255))
     ov_png = encode_png(ov)
     write_bytes(os.path.join(figs.dir, "glint_region.png"), ov_png)
     figs.add_file("Glint region on the reference frame", "figures/glint_region.png")
+    return ov_png, ov.width, ov.height
 
-    tiles, labels, figures_html = [], [], []
-    for name, kind, obj in rows:
-        t = crop(load(name, crop_frame), scale)
+
+def crop_caption(rep, frames, src, name, kind, obj):
+    """(caption lines under a crop, the first in bold; the label on its tile)."""
+    if kind == "reference":
+        if obj.get("frames"):
+            return [name, "read from files, the reference"], f"{name} (files)"
+        return [name, f"{obj.get('spp')} spp, the ground truth"], f"{name} ({obj.get('spp')} spp)"
+    de = next((r.get("deltaE2000") for r in frames.get(name, []) if r["frame"] == src.crop_frame), None)
+    fl = rep.metric_stat(obj, "flicker_ratio")
+    how = "read from files" if obj.get("source") == "frames" else f"{obj.get('aa')}, {obj.get('spp')} spp"
+    lines = [name, how]
+    if de is not None:
+        lines.append(f"ΔE00 {fmt(de)} (whole frame)")
+    if fl is not None:
+        lines.append(f"flicker ratio {fmt(fl)} (run mean)")
+    return lines, name
+
+
+def crops_section(rep):
+    """The glint crops' and the sequences' data for templates/crops.html.j2; None without PNG previews."""
+    src = CropSource(rep)
+    if not src.rows:
+        return None
+    ov_png, ov_w, ov_h = region_overview(src, rep.figs)
+    tiles, labels, crops = [], [], []
+    for name, kind, obj in src.rows:
+        t = src.crop(src.load(name, src.crop_frame), src.scale)
         tiles.append(t)
-        if kind == "reference":
-            if obj.get("frames"):
-                cap = f"<b>{esc(name)}</b><br>read from files, the reference"
-                labels.append(f"{name} (files)")
-            else:
-                cap = f"<b>{esc(name)}</b><br>{esc(obj.get('spp'))} spp, the ground truth"
-                labels.append(f"{name} ({obj.get('spp')} spp)")
-        else:
-            de = csv_value(name, crop_frame, "deltaE2000")
-            fl = rep.metric_stat(obj, "flicker_ratio")
-            bits = (["read from files"] if obj.get("source") == "frames"
-                    else [f"{esc(obj.get('aa'))}, {esc(obj.get('spp'))} spp"])
-            if de is not None:
-                bits.append(f"ΔE00 {fmt(de)} (whole frame)")
-            if fl is not None:
-                bits.append(f"flicker ratio {fmt(fl)} (run mean)")
-            cap = f"<b>{esc(name)}</b><br>" + "<br>".join(bits)
-            labels.append(name)
-        png = encode_png(Image.fromarray(t))
-        figures_html.append(f"<figure><img src='{data_uri('image/png', png)}' width={t.shape[1]} "
-                            f"height={t.shape[0]} alt='{esc(name)} crop'><figcaption>{cap}</figcaption></figure>")
+        caption, label = crop_caption(rep, rep.frames, src, name, kind, obj)
+        labels.append(label)
+        crops.append({"name": name, "caption": caption, "width": t.shape[1], "height": t.shape[0],
+                      "uri": data_uri("image/png", encode_png(Image.fromarray(t)))})
     font = load_font(12)
-    label_h = 17
     cols = min(len(tiles), max(1, 1400 // (tiles[0].shape[1] + 2)), 6)
-    write_bytes(os.path.join(figs.dir, "glint_crops.png"), encode_png(tile_grid(tiles, labels, cols, label_h, font)))
-    figs.add_file("Glint crops (one frame, labelled)", "figures/glint_crops.png")
+    write_bytes(os.path.join(rep.figs.dir, "glint_crops.png"), encode_png(tile_grid(tiles, labels, cols, 17, font)))
+    rep.figs.add_file("Glint crops (one frame, labelled)", "figures/glint_crops.png")
+    region = {k: getattr(src, k) for k in ("region_source", "cw", "ch", "how", "total", "n_src", "crop_frame", "scale",
+                                           "x0", "y0")}
+    return {"region": region, "overview": {"uri": data_uri("image/png", ov_png), "width": ov_w, "height": ov_h},
+            "crops": crops, "sequences": sequences(rep, src, labels, cols, font) if len(src.common) >= 2 else None}
 
-    how_text = (f"the {cw}×{ch}-pixel window where the {esc(region_source)} frames have the most bright outliers "
-                "against their local level (pixels brighter than the median of their 7×7 neighbourhood by at least "
-                f"{OUTLIER_MIN_EXCESS:g} in display-encoded luma and among the frame's "
-                f"{100 * OUTLIER_TOP_FRACTION:g} % that exceed it most: {fmt(total)} over {len(src)} frames)"
-                if how == "outliers" else
-                f"the {cw}×{ch}-pixel window of highest luminance contrast in the {esc(region_source)} frames (they "
-                "have no bright outliers)")
-    html_ = [
-        "<h2 id=crops>Glint crops</h2>"
-        f"<p>One region, chosen automatically as {how_text}, shown at frame {crop_frame} (the frame with most "
-        f"outliers in it) and enlarged {scale}× with nearest neighbour so every pixel is a visible square. "
-        "The images are the run's PNG previews, display-encoded through its OCIO view. Compare how many glints "
-        "each variant keeps, how bright and how large they are, against the reference.</p>"
-        f"<figure><img class=frame src='{data_uri('image/png', ov_png)}' width={ov.width} height={ov.height} "
-        f"alt='the region on the reference frame'><figcaption>The region (red) on the {esc(region_source)} frame "
-        f"{crop_frame}: x = {x0}…{x0 + cw - 1}, y = {y0}…{y0 + ch - 1}.</figcaption></figure>"
-        f"<div class=crops>{''.join(figures_html)}</div>",
-        "<h2 id=sequences>Sequences</h2>"]
-    if len(common) < 2:
-        html_.append("<p class=note>Only one saved frame: nothing to animate (<code>output.every</code> or "
-                     "<code>--frames</code> left one).</p>")
-        return "".join(html_)
 
-    # ---------------------------------------------------------------- sequences
-    seq = common
-    step = math.ceil(len(seq) / MAX_ANIMATION_FRAMES)
-    seq = seq[::step]
+def play_timing(rep, src, step):
+    """(ms per animation image, images per second, the camera path's frames per second)."""
+    frames, variants, common = rep.frames, rep.variants, src.common
     times = [r.get("time_s") for r in frames.get(variants[0]["name"], [])] if variants else []
     times = [t for t in times if t is not None]
     dts = sorted(b - a for a, b in zip(times, times[1:]) if b > a)
     path_fps = round(1.0 / dts[len(dts) // 2], 2) if dts else 30.0
     saved_step = max(1, (common[1] - common[0]) if len(common) > 1 else 1) * step
     duration = max(100, int(round(1000.0 * saved_step / path_fps)))  # at most 10 images per second
-    play_fps = 1000.0 / duration
-    n = len(rows)
-    a_scale = scale
-    while a_scale > 1 and n * (cw * a_scale) * (ch * a_scale) > MAX_ANIMATION_PIXELS:
-        a_scale -= 1
-    # Whole frames: shrunk (box filter) to at most 320 px wide, or enlarged
-    # (nearest) when tiny; smaller still when there are many rows.
+    return duration, 1000.0 / duration, path_fps
+
+
+def whole_frame_size(src, n):
+    """(width, height, how) of the whole frames in the animation of n rows: shrunk (box filter) to at
+    most 320 px wide, or enlarged (nearest) when tiny; smaller still when there are many rows."""
+    w, h = src.w, src.h
     if w > 320:
         f_div = math.ceil(w / 320)
         while n * (w // f_div) * (h // f_div) > MAX_ANIMATION_PIXELS:
             f_div += 1
-        fw, fh = w // f_div, h // f_div
-        f_note = f"shrunk {f_div}× (box filter: averaging hides some single-pixel flicker; the crops do not)"
-    else:
-        f_mul = max(1, 320 // w)
-        while f_mul > 1 and n * (w * f_mul) * (h * f_mul) > MAX_ANIMATION_PIXELS:
-            f_mul -= 1
-        fw, fh = w * f_mul, h * f_mul
-        f_note = f"enlarged {f_mul}× (nearest neighbour)" if f_mul > 1 else "at full resolution"
+        return w // f_div, h // f_div, f"shrunk {f_div}× (box filter: averaging hides some single-pixel flicker; " \
+                                       "the crops do not)"
+    f_mul = max(1, 320 // w)
+    while f_mul > 1 and n * (w * f_mul) * (h * f_mul) > MAX_ANIMATION_PIXELS:
+        f_mul -= 1
+    return w * f_mul, h * f_mul, f"enlarged {f_mul}× (nearest neighbour)" if f_mul > 1 else "at full resolution"
 
-    def whole(a):
-        if a is None:
-            return np.zeros((fh, fw, 3), np.uint8)
-        im = Image.fromarray(a).resize((fw, fh), Image.BOX if fw < w else Image.NEAREST)
-        t = np.asarray(im).copy()
-        sx, sy = fw / w, fh / h
-        rx0, ry0 = int(x0 * sx), int(y0 * sy)
-        rx1, ry1 = min(fw - 1, int((x0 + cw) * sx)), min(fh - 1, int((y0 + ch) * sy))
-        t[ry0, rx0:rx1 + 1] = t[ry1, rx0:rx1 + 1] = (230, 40, 40)
-        t[ry0:ry1 + 1, rx0] = t[ry0:ry1 + 1, rx1] = (230, 40, 40)
-        return t
 
+def whole_frame(src, a, fw, fh):
+    """A frame resized to fw x fh with the crop region outlined in red (black where it is missing)."""
+    if a is None:
+        return np.zeros((fh, fw, 3), np.uint8)
+    im = Image.fromarray(a).resize((fw, fh), Image.BOX if fw < src.w else Image.NEAREST)
+    t = np.asarray(im).copy()
+    sx, sy = fw / src.w, fh / src.h
+    rx0, ry0 = int(src.x0 * sx), int(src.y0 * sy)
+    rx1, ry1 = min(fw - 1, int((src.x0 + src.cw) * sx)), min(fh - 1, int((src.y0 + src.ch) * sy))
+    t[ry0, rx0:rx1 + 1] = t[ry1, rx0:rx1 + 1] = (230, 40, 40)
+    t[ry0:ry1 + 1, rx0] = t[ry0:ry1 + 1, rx1] = (230, 40, 40)
+    return t
+
+
+def sequences(rep, src, labels, cols, font):
+    """Animates the crops and the whole frames over the saved frames; their data for the template."""
+    step = math.ceil(len(src.common) / MAX_ANIMATION_FRAMES)
+    seq = src.common[::step]
+    duration, play_fps, path_fps = play_timing(rep, src, step)
+    n = len(src.rows)
+    a_scale = src.scale
+    while a_scale > 1 and n * (src.cw * a_scale) * (src.ch * a_scale) > MAX_ANIMATION_PIXELS:
+        a_scale -= 1
+    fw, fh, f_note = whole_frame_size(src, n)
     anim_crops, anim_whole = [], []
-    fcols = min(n, 3)
     for f in seq:
-        images = [load(name, f) for name, _, _ in rows]
+        images = [src.load(name, f) for name, _, _ in src.rows]
         labs = [f"{labels[0]} · f{f}"] + labels[1:]
-        anim_crops.append(tile_grid([crop(a, a_scale) for a in images], labs, cols, label_h, font))
-        anim_whole.append(tile_grid([whole(a) for a in images], labs, fcols, label_h, font))
+        anim_crops.append(tile_grid([src.crop(a, a_scale) for a in images], labs, cols, 17, font))
+        anim_whole.append(tile_grid([whole_frame(src, a, fw, fh) for a in images], labs, min(n, 3), 17, font))
     webp = features.check("webp_anim")
     kind, mime = ("webp", "image/webp") if webp else ("gif", "image/gif")
-    crops_data = encode_animation(anim_crops, duration, kind.upper(), lossless=True)
-    whole_data = encode_animation(anim_whole, duration, kind.upper(), lossless=False)
-    extra = {}
-    for name, frames_, data in (("crops", anim_crops, crops_data), ("frames", anim_whole, whole_data)):
-        title = "Crop sequence" if name == "crops" else "Whole-frame sequence"
-        write_bytes(os.path.join(figs.dir, f"{name}.{kind}"), data)
-        figs.add_file(title, f"figures/{name}.{kind}")
-        also = []
-        if webp:
-            write_bytes(os.path.join(figs.dir, f"{name}.gif"), encode_animation(frames_, duration, "GIF", False))
-            figs.add_file(title, f"figures/{name}.gif")
-            also.append("GIF")
-        err = encode_mp4(frames_, play_fps, os.path.join(figs.dir, f"{name}.mp4"))
-        if err is None:
-            figs.add_file(title, f"figures/{name}.mp4")
-            also.append("MP4")
-        extra[name] = (f"Also as {' and '.join(also)} under <code>figures/</code>" if also else "") + (
-            f" (no MP4: {esc(err)})" if err else "") + "."
-    span = (f"{len(common)} saved frames ({common[0]}…{common[-1]}" + (f"; every {step}th of them" if step > 1 else "")
-            + ")")
-    html_.append(
-        f"<p>The {span} side by side, looping at {fmt(play_fps)} images per second (the camera path "
-        f"runs at {fmt(path_fps)} frames per second; slowed so that single frames can be followed). Watch the "
-        "reference for how much a glint <i>should</i> change: a variant that sparkles where the reference is steady "
-        "flickers (flicker ratio above 1); one that stays smooth where the reference sparkles is blurred or lags "
-        "(below 1).</p>"
-        f"<h3>Glint region</h3><figure><img class=anim src='{data_uri(mime, crops_data)}' "
-        f"width={anim_crops[0].width} height={anim_crops[0].height} alt='crop sequence'><figcaption>The crops above "
-        f"over the sequence ({a_scale}× nearest neighbour). {extra['crops']}</figcaption></figure>"
-        f"<h3>Whole frames</h3><figure><img class=anim src='{data_uri(mime, whole_data)}' "
-        f"width={anim_whole[0].width} height={anim_whole[0].height} alt='whole-frame sequence'><figcaption>Whole "
-        f"frames, {f_note}; the red box is the crop region. {extra['frames']}</figcaption></figure>")
-    return "".join(html_)
+    out = {"saved": src.common, "step": step, "play_fps": play_fps, "path_fps": path_fps, "a_scale": a_scale,
+           "f_note": f_note}
+    for name, frames_, lossless in (("crops", anim_crops, True), ("frames", anim_whole, False)):
+        data = encode_animation(frames_, duration, kind.upper(), lossless=lossless)
+        also, err = write_animation(rep.figs, name, kind, data, frames_, duration, play_fps, webp)
+        out[name] = {"uri": data_uri(mime, data), "width": frames_[0].width, "height": frames_[0].height,
+                     "also": also, "err": err}
+    return out
+
+
+def write_animation(figs, name, kind, data, frames_, duration, play_fps, webp):
+    """Writes figures/<name>.<kind>, a GIF beside a WebP and an MP4 where ffmpeg is installed; returns
+    (the other formats written, why there is no MP4 or None)."""
+    title = "Crop sequence" if name == "crops" else "Whole-frame sequence"
+    write_bytes(os.path.join(figs.dir, f"{name}.{kind}"), data)
+    figs.add_file(title, f"figures/{name}.{kind}")
+    also = []
+    if webp:
+        write_bytes(os.path.join(figs.dir, f"{name}.gif"), encode_animation(frames_, duration, "GIF", False))
+        figs.add_file(title, f"figures/{name}.gif")
+        also.append("GIF")
+    err = encode_mp4(frames_, play_fps, os.path.join(figs.dir, f"{name}.mp4"))
+    if err is None:
+        figs.add_file(title, f"figures/{name}.mp4")
+        also.append("MP4")
+    return also, err
 
 
 def build_report(run_dir):

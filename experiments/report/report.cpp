@@ -29,7 +29,7 @@ namespace {
 // The script's own exit codes besides those of exit_codes.h.
 constexpr int kScriptMissingModule = 10;
 
-constexpr const char* kPackages = "python3 python3-numpy python3-matplotlib python3-pil";
+constexpr const char* kPackages = "python3 python3-numpy python3-scipy python3-matplotlib python3-pil python3-jinja2";
 
 struct Child {
   int spawn_error = 0;  // errno of a failed start (e.g. ENOENT), 0 if it ran
