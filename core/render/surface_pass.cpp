@@ -239,9 +239,9 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
     resolve_pipeline_ = make_compute_pipeline(ctx, resolve_layout_.get(), m.get());
     resolve_set_ = make_descriptor_set(ctx, resolve_set_layout_.get(), db);
   }
-  // The sum: a full-screen draw per sample, blending. Measured against a compute add (imageLoad +
-  // imageStore) at 1280x720: 2.3-2.7 against 11-12 ms a sample (bench, "floor, as one sample of SSAA" minus
-  // "floor").
+  // The sum: a full-screen draw per sample, blending; on llvmpipe several times cheaper than a compute add
+  // (imageLoad + imageStore): `glintlab_bench`, "floor, as one sample of SSAA" minus "floor"
+  // (tests/bench/README.md).
   if (sum_opaque_) {
     std::vector<VkDescriptorSetLayoutBinding> ab = {
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
@@ -391,9 +391,9 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
   // One opaque sample with the sky on writes every pixel once: the nearest
   // surface, or the sky wherever depth is still the cleared far plane (it tests
   // LESS_OR_EQUAL at z = 1). Clearing colour and motion first would only cost
-  // time (on lavapipe 3.7 ms of a 1280x720 frame, 14.0 -> 10.2 ms in the bench's
-  // floor); accumulated samples, and frames without sky, start from the clear
-  // (each opaque sample of a sum its own).
+  // time (a quarter of the bench's "floor" on lavapipe, tests/bench/README.md);
+  // accumulated samples, and frames without sky, start from the clear (each
+  // opaque sample of a sum its own).
   const bool clear_colour = !(opaque_ && opt_.sky);
   triangles_drawn_ = triangles_all_ = 0;
   VkDeviceSize zero_offset = 0;

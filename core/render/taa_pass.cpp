@@ -47,8 +47,8 @@ TaaPass::TaaPass(const VkContext& ctx, TaaSettings settings, bool share_quads)
     b.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   set_layout_ = make_set_layout(ctx, b);
   layout_ = make_pipeline_layout(ctx, set_layout_.get(), sizeof(TaaPush), VK_SHADER_STAGE_FRAGMENT_BIT);
-  // A full-screen fragment pass rather than compute: on llvmpipe a compute pass costs about 12 ns a
-  // pixel before any work (a stripped resolve with two fetches and two stores: 2.5-3.2 ms at 640x360).
+  // A full-screen fragment pass rather than compute: on llvmpipe a compute pass has a cost per pixel
+  // before any work that a fragment pass does not (tests/bench/README.md).
   // Every pixel's targets are written, so their old contents are not loaded.
   outputs_ = {kFormat, kFormat};                 // taa.color, taa.history
   if (s_.anti_flicker) outputs_.push_back(kFormat);  // taa.luma

@@ -35,9 +35,8 @@
 //                    min/max of the 3x3 current G); out = colour' + G_out.
 // Inputs use texelFetch only (exact, no filtering hardware needed).
 // A full-screen fragment pass (passes/fullscreen.vert): one fragment per pixel
-// writes the resolved colour, the history and (anti_flicker) the lumas. On
-// llvmpipe a compute pass costs about 12 ns a pixel before it does any work
-// (core/render/taa_pass.cpp).
+// writes the resolved colour, the history and (anti_flicker) the lumas (why a
+// fragment pass: core/render/taa_pass.cpp).
 
 #ifndef TAA_QUAD_SHARE
 #define TAA_QUAD_SHARE 0
