@@ -59,27 +59,6 @@ double mean_squared_error_y(const Image& test_xyz, const Image& ref_xyz) {
   return n ? s / double(n) : 0.0;
 }
 
-double mean_absolute_error_y(const Image& test_xyz, const Image& ref_xyz) {
-  require_same_size(test_xyz, ref_xyz, "mean_absolute_error_y");
-  double s = 0.0;
-  const std::size_t n = test_xyz.pixel_count();
-  for (std::size_t i = 0; i < n; ++i)
-    s += std::abs(double(test_xyz.data[i * test_xyz.channels + 1]) - ref_xyz.data[i * ref_xyz.channels + 1]);
-  return n ? s / double(n) : 0.0;
-}
-
-double mean_squared_error_channels(const Image& test, const Image& ref) {
-  require_same_size(test, ref, "mean_squared_error_channels");
-  double s = 0.0;
-  const std::size_t n = test.pixel_count();
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double d = double(test.data[i * test.channels + c]) - ref.data[i * ref.channels + c];
-      s += d * d;
-    }
-  return n ? s / (3.0 * double(n)) : 0.0;
-}
-
 double mean_absolute_error_channels(const Image& test, const Image& ref) {
   require_same_size(test, ref, "mean_absolute_error_channels");
   double s = 0.0;

@@ -29,10 +29,7 @@ Image luminance(const Image& xyz);
 Image squared_error_map(const Image& test_xyz, const Image& ref_xyz);
 // mean over pixels of (Y_t - Y_r)^2.
 double mean_squared_error_y(const Image& test_xyz, const Image& ref_xyz);
-// mean over pixels of |Y_t - Y_r|.
-double mean_absolute_error_y(const Image& test_xyz, const Image& ref_xyz);
-// mean over pixels and the first three channels of (c_t - c_r)^2, resp. |c_t - c_r|.
-double mean_squared_error_channels(const Image& test, const Image& ref);
+// mean over pixels and the first three channels of |c_t - c_r|.
 double mean_absolute_error_channels(const Image& test, const Image& ref);
 
 // PSNR in dB of the luminance Y: 10 log10(peak^2 / MSE_Y), no clamping of Y (HDR values allowed).

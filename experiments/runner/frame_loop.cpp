@@ -28,7 +28,7 @@ struct FrameLoop::Impl {
   std::ostream& log;
   std::vector<RenderSetup> variants, references;
   RenderSetup motion;
-  std::unique_ptr<metrics::FrameMetrics> measure;
+  std::unique_ptr<metrics::FrameMetrics> frame_metrics;  // null when the run does not measure
   std::vector<metrics::FlickerTracker> trackers;
   std::vector<metrics::FlickerTracker> half_trackers;  // per reference: its half B along the motion against half A
 
@@ -45,7 +45,7 @@ struct FrameLoop::Impl {
         references.push_back(r.files ? RenderSetup{}
                                      : build_reference(ctx, scene, spec.width, spec.height, r.program,
                                                        spec.reference.grid));
-      measure = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
+      frame_metrics = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
       trackers.resize(plan.variants.size());
       half_trackers.resize(plan.references.size());
     }
@@ -68,7 +68,7 @@ std::vector<std::string> FrameLoop::pass_names() const {
 }
 
 std::vector<std::string> FrameLoop::metric_names() const {
-  return impl_->measure ? impl_->measure->names() : std::vector<std::string>{};
+  return impl_->frame_metrics ? impl_->frame_metrics->names() : std::vector<std::string>{};
 }
 
 void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& sinks) {
@@ -115,7 +115,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         rec.image = &*img;
         if (own_frame)
           for (RecordSink* s : sinks) s->reference(rec);
-        prepared[r] = m.measure->prepare(*img, m.plan.references[r].variants.size() > 1);
+        prepared[r] = m.frame_metrics->prepare(*img, m.plan.references[r].variants.size() > 1);
         continue;
       }
       const std::string key = m.plan.reference_key(int(r), in.uniforms);
@@ -152,7 +152,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       // The noise floor: every metric of half B against half A, along the same motion.
       if (setup.halves) {
         if (k == 0 || cam.cut || !work.reference[r][kk - 1]) m.half_trackers[r].reset();
-        rec.halves_metrics = m.measure->measure(*halves[1], m.measure->prepare(*halves[0], false), motion,
+        rec.halves_metrics = m.frame_metrics->measure(*halves[1], m.frame_metrics->prepare(*halves[0], false), motion,
                                                 m.half_trackers[r]);
         ref_floor[r] = metrics::noise_floor(rec.halves_metrics);
         rec.half_a = &*halves[0];
@@ -163,7 +163,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
       ref_scan[r] = metrics::scan_pixels(*img, 3);
       if (own_frame)
         for (RecordSink* s : sinks) s->reference(rec);
-      prepared[r] = m.measure->prepare(*img, m.plan.references[r].variants.size() > 1);
+      prepared[r] = m.frame_metrics->prepare(*img, m.plan.references[r].variants.size() > 1);
     }
     for (size_t r = 0; r < m.references.size(); ++r)
       if (work.reference[r][kk] && own_frame && !ref_scan[r].clean())
@@ -205,7 +205,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
         // and where the previous frame was not measured.
         if (cam.cut || k == 0 || !work.measure[i][kk - 1]) m.trackers[i].reset();
         rec.reference_cached = ref_cached[size_t(pv.reference)];
-        rec.metrics = m.measure->measure(img, prepared[size_t(pv.reference)], motion, m.trackers[i],
+        rec.metrics = m.frame_metrics->measure(img, prepared[size_t(pv.reference)], motion, m.trackers[i],
                                          &rec.metric_cost_ms);
         // A truth with NaN, Inf or negative pixels measures nothing: counted, and every metric NaN.
         const metrics::PixelScan& rs = ref_scan[size_t(pv.reference)];

@@ -242,11 +242,11 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
     }
     return measure_sequences(m, log);
   }
-  const bool measure = opt.measure && spec.reference.enabled;
+  const bool measured = opt.measure && spec.reference.enabled;
   if (opt.measure && !spec.reference.enabled)
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";
   nlohmann::json summary_extra = extra;
-  if (measure && !spec.reference.floor_target.empty() && opt.reference_grid == 0) {
+  if (measured && !spec.reference.floor_target.empty() && opt.reference_grid == 0) {
     if (opt.shard_count > 1) {
       log << "error: " << file << ": reference.floor sizes the truth by whole runs; run it unsharded once, then "
           << "shard with the \"grid\" it chose (summary.json reference_sizing.grid)\n";
@@ -272,7 +272,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   // ---- the journal: what this folder already holds, and what it is a run of
   nlohmann::json header = {{"type", "run"},
                                  {"glintlab_version", version()},
-                                 {"command", measure ? "run" : "render"},
+                                 {"command", measured ? "run" : "render"},
                                  {"file", file},
                                  {"source", source},
                                  {"content_hash", core::hash_hex(dump_json(source))},
@@ -296,7 +296,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   }
   log << "\n";
   if (!opt.images) spec.output.exr = spec.output.png = spec.output.contact_sheet = spec.output.motion = spec.output.halves = false;
-  const RunPlan plan = make_plan(spec, spec.frames, measure, cm, data, ctx.info().name, &log);
+  const RunPlan plan = make_plan(spec, spec.frames, measured, cm, data, ctx.info().name, &log);
   const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);
   journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
   const WorkSchedule work = schedule_work(plan, *journal, begin, end);
