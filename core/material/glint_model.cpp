@@ -46,7 +46,7 @@ bool is_identifier(const std::string& s) {
 }
 
 const char* kModelSyntax =
-    "// glint_model truth=self|grains limit=beckmann checks=finite,unbiased,limit,deterministic";
+    "// glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic";
 const char* kParameterSyntax =
     "// glint_parameter NAME default=VALUE range=LO,HI  or  // glint_parameter NAME default=true|false type=bool";
 
@@ -87,7 +87,7 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
         std::string key = f.substr(0, eq), value = eq == std::string::npos ? "" : f.substr(eq + 1);
         if (key == "truth" && !value.empty()) {
           d.truth = value;
-        } else if (key == "limit" && value == "beckmann") {
+        } else if (key == "limit" && (value == "beckmann" || value == "ggx")) {
           d.limit = value;
         } else if (key == "checks" && !value.empty()) {
           d.checks = split(value, ',');
@@ -96,7 +96,7 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
             if (std::find(all.begin(), all.end(), c) == all.end())
               fail("unknown check \"" + c + "\" (allowed: finite, unbiased, limit, deterministic)", kModelSyntax);
         } else {
-          fail("unknown or empty field \"" + f + "\" (limit: beckmann)", kModelSyntax);
+          fail("unknown or empty field \"" + f + "\" (limit: beckmann or ggx)", kModelSyntax);
         }
       }
     } else {

@@ -33,7 +33,7 @@ struct GlintParameter {
 std::vector<std::string> glint_check_names();
 
 // A model's declaration:
-//   // glint_model truth=self|grains limit=beckmann checks=finite,unbiased,limit,deterministic
+//   // glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic
 struct GlintModelDecl {
   std::string name;  // built-in: the file name without .glsl; a user file: its path as given
   std::string file;  // built-in: relative to the shader folder; a user file: absolute
@@ -42,7 +42,7 @@ struct GlintModelDecl {
   // the built-in model (of truth "self") whose supersampled image is (grains:
   // the explicit microdetails a filtering model approximates).
   std::string truth = "self";
-  std::string limit = "beckmann";   // the smooth limit: the far field and the conformance checks
+  std::string limit = "beckmann";   // the smooth limit (or "ggx", GGX with alpha_g): the far field and the checks
   std::vector<std::string> checks;  // which of glint_check_names() apply
   std::vector<GlintParameter> parameters;  // in declaration order = slot order in the material block
   std::string content_hash;                // of the file's bytes

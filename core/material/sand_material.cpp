@@ -404,6 +404,8 @@ std::vector<std::string> glint_model_defines(const GlintModelDecl& d) {
     values += "q." + n + "=p.glint_parameters[" + std::to_string(i / 4) + "][" + std::to_string(i % 4) + "];";
   }
   std::vector<std::string> out = {"GLINT_MODEL_INCLUDE", std::string(kIncludeAliasPrefix) + "GLINT_MODEL_FILE=" + d.file};
+  out.push_back("GLINT_MODEL_HASH=h" + d.content_hash);  // the file's bytes (an identifier: h + hex) in every key
+  if (d.limit == "ggx") out.push_back("GLINT_LIMIT_GGX");
   if (!fields.empty()) {
     out.push_back("GLINT_MODEL_PARAMETERS=" + fields);
     out.push_back("GLINT_MODEL_PARAMETER_VALUES=" + values);

@@ -181,8 +181,11 @@ constexpr double kSandPruneWeight = 1e-4;
 std::vector<std::string> shader_defines(const SandParams& params, const SandFeatures& needs);
 
 // The defines that build a glint_D model into shaders/sand/glint_models.glsl:
-// GLINT_MODEL_INCLUDE, the include alias GLINT_MODEL_FILE (its file), and its
-// parameters as GlintQuery fields read from SandParams.glint_parameters.
+// GLINT_MODEL_INCLUDE, the include alias GLINT_MODEL_FILE (its file),
+// GLINT_MODEL_HASH (its content hash, so the reference cache key changes with
+// any byte of it), its parameters as GlintQuery fields read from
+// SandParams.glint_parameters, and GLINT_LIMIT_GGX for a model whose smooth
+// limit is GGX.
 std::vector<std::string> glint_model_defines(const GlintModelDecl& model);
 
 }  // namespace glintlab::core

@@ -968,8 +968,11 @@ class Report:
                 text = f"frames read from <code>{esc(v.get('frames', '?'))}</code>"
             else:
                 text = esc(v.get("aa", "?"))
-            if len(models) > 1:
+            params = v.get("glint_parameters") or {}
+            if len(models) > 1 or params:
                 text += f"; glint model {esc(v.get('glint_model'))}"
+                if params:  # the model's own parameters, as its declaration names them
+                    text += " (" + ", ".join(f"{esc(k)} = {esc(x)}" for k, x in params.items()) + ")"
             if v.get("debug") not in (None, "final"):
                 text += f"; debug output {esc(v.get('debug'))}"
             items.append(f"<li><b>{esc(v['name'])}</b>: {text}</li>")

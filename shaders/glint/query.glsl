@@ -9,7 +9,7 @@
 //
 // A model file declares itself in comment lines that glintlab reads
 // (core/material/glint_registry.h):
-//   // glint_model truth=grains|self limit=beckmann checks=finite,unbiased,limit,deterministic
+//   // glint_model truth=grains|self limit=beckmann|ggx checks=finite,unbiased,limit,deterministic
 //   // glint_parameter NAME default=VALUE range=LO,HI     (a number)
 //   // glint_parameter NAME default=false type=bool       (0.0 or 1.0 in the query)
 // Every parameter is a float field of GlintQuery with its own name.

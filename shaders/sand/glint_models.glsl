@@ -14,6 +14,7 @@
 #include "sand/glint_radiance.glsl"
 #include "glint/query.glsl"
 #include "common/beckmann.glsl"
+#include "common/ggx.glsl"
 
 vec3 glint_D(GlintQuery q);
 
@@ -35,9 +36,16 @@ vec3 glint_D(GlintQuery q) { return vec3(0.0); }
 #define GLINT_MODEL_PARAMETER_VALUES
 #endif
 
-// The smooth limit of every model, which the far field shades: D_g, Beckmann with alpha_g
-// (Zirr & Kaplanyan 2016 eq. 3-4).
-float glint_limit_D(GlintQuery q) { return beckmann_D(q.h, vec2(0.0), q.alpha_g); }
+// The model's smooth limit, which the far field shades and the conformance checks compare with:
+// D_g, Beckmann with alpha_g (Zirr & Kaplanyan 2016 eq. 3-4), or GGX with alpha_g where the
+// model's declaration says limit=ggx (GLINT_LIMIT_GGX).
+float glint_limit_D(GlintQuery q) {
+#ifdef GLINT_LIMIT_GGX
+  return ggx_D(q.h, q.alpha_g);
+#else
+  return beckmann_D(q.h, vec2(0.0), q.alpha_g);
+#endif
+}
 
 GlintQuery glint_query(SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy, GlintFrame f, GlintRoughness r) {
   GlintQuery q;

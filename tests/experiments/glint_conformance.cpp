@@ -5,7 +5,9 @@
 #include "experiments/glint_test/glint_test.h"
 #include "core/util/json_check.h"
 #include "core/vk/shader_compiler.h"
+#include "core/material/program.h"
 #include "experiments/runner/runner.h"
+#include "experiments/spec/experiment_spec.h"
 
 #include "tests/support/temp_dir.h"
 #include "tests/support/vk_test_util.h"
@@ -74,6 +76,24 @@ TEST(GlintTest, TwiceBeckmannFailsUnbiasedAndNanAtGrazingFailsFinite) {
   EXPECT_FALSE(check(nan, "finite").pass) << nan.text();
   EXPECT_GT(check(nan, "finite").figure, 0.0);
   EXPECT_NE(check(nan, "finite").detail.find("NaN"), std::string::npos);
+}
+
+TEST(GlintTest, TheChecksCompareWithTheDeclaredSmoothLimit) {
+  // GGX declared with its own limit passes; the same function declared with the Beckmann limit is biased
+  GlintTestReport ggx = conformance((kModels / "ggx_inline.glsl").string());
+  EXPECT_TRUE(ggx.all_pass()) << ggx.text();
+  test::TempDir dir("ggx_as_beckmann");
+  std::ifstream in(kModels / "ggx_inline.glsl");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const size_t at = text.find("limit=ggx");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 9, "limit=beckmann");
+  std::ofstream(dir / "ggx_as_beckmann.glsl") << text;
+  GlintTestReport wrong = conformance((dir / "ggx_as_beckmann.glsl").string());
+  EXPECT_FALSE(check(wrong, "unbiased").pass) << wrong.text();
+  EXPECT_TRUE(check(wrong, "finite").pass) << wrong.text();
 }
 
 TEST(GlintTest, LodCoherenceOfAFootprintIgnoringModelIsReported) {
@@ -192,8 +212,26 @@ TEST(UserGlintModel, ResumeAfterTheFileChangedIsRefused) {
   o.resume = true;
   std::ostringstream same;
   EXPECT_EQ(run_experiment(o, same), 0) << same.str();  // unchanged: resumes
+  auto reference_key = [&] {
+    const ExperimentSpec spec = ExperimentSpec::from_json(read_json_file((dir.path() / "e.json").string()),
+                                                          (dir.path() / "e.json").string());
+    return core::sand_program(spec.variants[0].material, {}, core::ProgramRole::Reference).cache_key();
+  };
+  const std::string key_before = reference_key();
   write(dir.path() / "m.glsl", read(dir.path() / "m.glsl") + "// changed\n");
+  EXPECT_NE(reference_key(), key_before) << "the file's content is part of the reference cache key";
   std::ostringstream changed;
   EXPECT_EQ(run_experiment(o, changed), 2) << changed.str();
   EXPECT_NE(changed.str().find("--resume"), std::string::npos) << changed.str();
+}
+
+TEST(UserGlintModel, NegativeValuesAreDefectsOfTheRun) {
+  test::TempDir dir("user_glint_model");
+  fs::copy_file(kModels / "negative.glsl", dir.path() / "neg.glsl");
+  write(dir.path() / "e.json", user_experiment({{"file", "neg.glsl"}}).dump());
+  RunOptions o = options(dir.path() / "e.json", dir.path() / "out");
+  o.max_frames = 1;
+  std::ostringstream log;
+  EXPECT_EQ(run_experiment(o, log), 1) << log.str();
+  EXPECT_NE(log.str().find("negative pixels"), std::string::npos) << log.str();
 }

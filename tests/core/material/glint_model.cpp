@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -71,6 +72,15 @@ TEST(GlintModel, DeclarationsAreParsedAndMalformedOnesNamed) {
   EXPECT_EQ(d.parameters[0].hi, 4.0);
   EXPECT_TRUE(d.parameters[1].is_bool);
   EXPECT_EQ(d.parameters[1].def, 1.0);
+  // the smooth limit GGX: the far field and the checks use GGX with alpha_g
+  auto g = core::parse_glint_model("g", "g.glsl", "// glint_model limit=ggx\n");
+  EXPECT_EQ(g.limit, "ggx");
+  EXPECT_EQ(g.truth, "self");
+  g.file = "g.glsl";
+  auto defs = core::glint_model_defines(g);
+  EXPECT_NE(std::find(defs.begin(), defs.end(), "GLINT_LIMIT_GGX"), defs.end());
+  defs = core::glint_model_defines(d);
+  EXPECT_EQ(std::find(defs.begin(), defs.end(), "GLINT_LIMIT_GGX"), defs.end());
   auto expect_error = [](const std::string& text, const std::string& must_contain) {
     try {
       core::parse_glint_model("m", "m.glsl", text);

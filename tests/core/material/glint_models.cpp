@@ -191,6 +191,7 @@ TEST(GlintParams, DefinesReferenceAndDebugOutputs) {
   EXPECT_TRUE(has(d, "SAND_GLINTS=1") && has(d, "SAND_GLINT_MODEL=" + zirr_id));
   // the model's file and its parameters as query fields read from their slots
   EXPECT_TRUE(has(d, "GLINT_MODEL_INCLUDE") && has(d, "include:GLINT_MODEL_FILE=glint/models/zirr.glsl"));
+  EXPECT_TRUE(has(d, "GLINT_MODEL_HASH=h" + core::find_builtin_glint_model("zirr")->content_hash));
   EXPECT_TRUE(std::any_of(d.begin(), d.end(), [](const std::string& x) {
     return x.rfind("GLINT_MODEL_PARAMETERS=", 0) == 0 && x.find("float size_variation;") != std::string::npos;
   }));
