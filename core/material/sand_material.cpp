@@ -1,6 +1,10 @@
 #include "core/material/sand_material.h"
 
 #include "core/util/json_check.h"
+#include "core/vk/shader_compiler.h"
+
+#include <algorithm>
+#include <filesystem>
 
 #include <cmath>
 #include <sstream>
@@ -26,8 +30,7 @@ const Range kSSS{"SSS", 0, 1}, kRs{"R_s", 0, 1}, kT{"T", 0, 1}, kRt{"R_t", 0, 1}
 // "glints" (Zirr & Kaplanyan 2016 sec. 4.5); names as the JSON keys inside "glints"
 // log_density from -3 (one microdetail per 1000 uv units: sparser than any mesh) to 14
 const Range kLogDensity{"log_density", -3, 14}, kAlphaG{"alpha_g", 1e-3, 1},
-    kRelRough{"relative_roughness", 1e-3, 1}, kSizeVar{"size_variation", 0, 2}, kIntensity{"intensity", 0, 1e6},
-    kLightCone{"light_cone", 0, 0.5}, kColorSat{"color_saturation", 0, 1};
+    kRelRough{"relative_roughness", 1e-3, 1}, kIntensity{"intensity", 0, 1e6}, kLightCone{"light_cone", 0, 0.5};
 
 std::string num(double v) {
   std::ostringstream o;
@@ -56,6 +59,14 @@ void check_enum(const char* name, const std::string& v, const std::vector<std::s
 }
 
 double get(JsonReader& r, const Range& range, double def) { return r.get_number(range.name, def, range.lo, range.hi); }
+
+std::string parameter_list(const GlintModelDecl& d) {
+  std::string out;
+  for (const auto& p : d.parameters)
+    out += (out.empty() ? "" : ", ") + p.name +
+           (p.is_bool ? " (true or false)" : " [" + num(p.lo) + ", " + num(p.hi) + "]");
+  return out;
+}
 
 }  // namespace
 
@@ -128,10 +139,22 @@ void SandParams::validate() const {
     check_glint(kAlphaG, glints.alpha_g[a], "[" + std::to_string(a) + "]");
     check_glint(kRelRough, glints.relative_roughness[a], "[" + std::to_string(a) + "]");
   }
-  check_glint(kSizeVar, glints.size_variation);
   check_glint(kIntensity, glints.intensity);
   if (glints.light_cone) check_glint(kLightCone, *glints.light_cone);
-  check_glint(kColorSat, glints.color_saturation);
+  auto names = glint_model_names();
+  if (!glint_file && std::find(names.begin(), names.end(), glint_model) == names.end())
+    check_enum("glint_model", glint_model, names);
+  const GlintModelDecl* decl = glint_decl();
+  for (const auto& [name, value] : glints.model) {
+    const GlintParameter* gp = decl ? decl->parameter(name) : nullptr;
+    if (!gp)
+      throw ConfigError("sand: glints." + name + " is not a parameter of glint model " + glint_model +
+                        (decl && !decl->parameters.empty() ? "; its parameters: " + parameter_list(*decl)
+                                                           : "; it has none"));
+    if (gp->is_bool && !(value == 0.0 || value == 1.0))
+      throw ConfigError("sand: glints." + name + " = " + num(value) + " is not allowed; allowed true or false");
+    check_glint(Range{gp->name.c_str(), gp->lo, gp->hi}, value);
+  }
   if (appendix_compat & ~uint32_t(kSandCompatAll))
     throw ConfigError("sand: appendix_compat = " + std::to_string(appendix_compat) + " has unknown bits; allowed 0.." +
                       std::to_string(unsigned(kSandCompatAll)));
@@ -172,8 +195,39 @@ SandParams SandParams::from_json(JsonReader& r) {
   p.sigmoid_a = get(r, kSigA, p.sigmoid_a);
   p.sigmoid_b = get(r, kSigB, p.sigmoid_b);
   p.ior = get(r, kIor, p.ior);
-  p.glint_model = *enum_from_name(kGlintModelNames, r.get_enum("glint_model", enum_name(kGlintModelNames, p.glint_model),
-                                                             enum_names(kGlintModelNames)));
+  if (r.has("glint_model") && r.raw("glint_model").is_object()) {
+    // a user's model file: {"file": path relative to the experiment file, "truth", "parameters"}
+    JsonReader g = r.child("glint_model");
+    const std::string file = g.get_string("file");
+    const std::filesystem::path path =
+        std::filesystem::path(file).is_absolute() ? std::filesystem::path(file)
+                                                  : std::filesystem::path(r.file()).parent_path() / file;
+    GlintModelDecl decl;
+    try {
+      decl = glint_model_from_file(path.string());
+    } catch (const ConfigError& e) {
+      g.fail("file", e.what());
+    }
+    decl.name = file;
+    if (g.has("truth")) {
+      std::vector<std::string> truths{"self"};
+      for (const auto& m : builtin_glint_models())
+        if (m.truth == "self") truths.push_back(m.name);
+      decl.truth = g.get_enum("truth", truths);
+    }
+    if (auto pj = g.optional_child("parameters")) {
+      for (const auto& gp : decl.parameters) {
+        if (!pj->has(gp.name)) continue;
+        p.glints.model[gp.name] = gp.is_bool ? (pj->get_bool(gp.name) ? 1.0 : 0.0) : pj->get_number(gp.name, gp.lo, gp.hi);
+      }
+      pj->finish();
+    }
+    g.finish();
+    p.glint_model = file;
+    p.glint_file = std::make_shared<const GlintModelDecl>(std::move(decl));
+  } else {
+    p.glint_model = r.get_enum("glint_model", p.glint_model, glint_model_names());
+  }
   p.fresnel_half_vector = r.get_enum("fresnel_half_vector", p.fresnel_half_vector, kFresnelHalfVectors);
   if (r.has("appendix_compat")) {
     const auto& j = r.raw("appendix_compat");
@@ -210,7 +264,6 @@ SandParams SandParams::from_json(JsonReader& r) {
     G.log_density = getg(kLogDensity, G.log_density);
     G.alpha_g = get2(kAlphaG, G.alpha_g);
     G.relative_roughness = get2(kRelRough, G.relative_roughness);
-    G.size_variation = getg(kSizeVar, G.size_variation);
     G.intensity = getg(kIntensity, G.intensity);
     if (g->has(kLightCone.name)) {
       const auto& j = g->raw(kLightCone.name);
@@ -223,8 +276,12 @@ SandParams SandParams::from_json(JsonReader& r) {
         g->fail(kLightCone.name, "expected \"sun\" or a number in [0, 0.5] (radians)");
       }
     }
-    G.color_saturation = getg(kColorSat, G.color_saturation);
-    G.half_vector_blend = g->get_bool("half_vector_blend", G.half_vector_blend);
+    // the model's own parameters (its declaration); any other key is unknown
+    if (const GlintModelDecl* decl = p.glint_decl())
+      for (const auto& gp : decl->parameters) {
+        if (!g->has(gp.name)) continue;
+        G.model[gp.name] = gp.is_bool ? (g->get_bool(gp.name) ? 1.0 : 0.0) : g->get_number(gp.name, gp.lo, gp.hi);
+      }
     g->finish();
   }
   r.finish();
@@ -232,15 +289,37 @@ SandParams SandParams::from_json(JsonReader& r) {
   return p;
 }
 
+const GlintModelDecl* SandParams::glint_decl() const {
+  if (glint_file) return glint_file.get();
+  return find_builtin_glint_model(glint_model);
+}
+
+double SandParams::glint_parameter(const std::string& name) const {
+  const GlintModelDecl* d = glint_decl();
+  const GlintParameter* gp = d ? d->parameter(name) : nullptr;
+  if (!gp) throw ConfigError("sand: glint model " + glint_model + " has no parameter " + name);
+  auto it = glints.model.find(name);
+  return it != glints.model.end() ? it->second : gp->def;
+}
+
 SandParams SandParams::reference() const {
   SandParams p = *this;
-  if (p.glint_model == GlintModel::Zirr) p.glint_model = GlintModel::Grains;
+  if (const GlintModelDecl* d = glint_decl(); d && d->truth != "self") {
+    const GlintModelDecl* truth = find_builtin_glint_model(d->truth);
+    if (!truth) throw ConfigError("sand: glint model " + glint_model + ": truth " + d->truth + " is no built-in model");
+    // the truth keeps the values of the parameters it declares too
+    std::map<std::string, double> kept;
+    for (const auto& [name, value] : glints.model)
+      if (truth->parameter(name)) kept[name] = value;
+    p.glint_model = truth->name;
+    p.glint_file.reset();
+    p.glints.model = kept;
+  }
   // The truth has no far field and no transition (SAND_FAR=0): the sigmoid's
   // parameters do not change it, so variants that differ only there share it.
   const SandParams defaults;
   p.sigmoid_a = defaults.sigmoid_a;
   p.sigmoid_b = defaults.sigmoid_b;
-  p.glints.half_vector_blend = false;  // zirr's estimator option; the grains truth has no half-vector bins
   return p;
 }
 
@@ -267,18 +346,17 @@ SandParamsGPU SandParams::pack() const {
   g.sig_b = float(sigmoid_b);
   g.appendix_compat = appendix_compat;
   g.fresnel_half_vector = fresnel_half_vector == "light_view" ? 1u : 0u;  // SAND_FRESNEL_*
-  g.glint_model = uint32_t(glint_model);                                  // SAND_GLINT_*
+  g.glint_model = glint_file ? glint_model_gpu_id("") : glint_model_gpu_id(glint_model);  // SAND_GLINT_*
   g.energy_consistent = energy_consistent ? 1u : 0u;
   g.glint_intensity = float(glints.intensity);
   g.glint_light_cone = glints.light_cone ? float(*glints.light_cone) : -1.0f;  // < 0: the sun's
-  g.glint_size_variation = float(glints.size_variation);
   for (size_t a = 0; a < 2; ++a) {
     g.glint_alpha[a] = float(glints.alpha_g[a]);
     g.glint_alpha[2 + a] = float(glints.relative_roughness[a]);
   }
   g.glint_log_density = float(glints.log_density);
-  g.glint_color_saturation = float(glints.color_saturation);
-  g.glint_half_vector_blend = glints.half_vector_blend ? 1.0f : 0.0f;
+  if (const GlintModelDecl* d = glint_decl())
+    for (size_t i = 0; i < d->parameters.size(); ++i) g.glint_parameters[i] = float(glint_parameter(d->parameters[i].name));
   return g;
 }
 
@@ -296,8 +374,8 @@ std::vector<std::string> shader_defines(const SandParams& p, const SandFeatures&
     throw ConfigError("sand: features: need 0 <= min_distance <= max_distance, got [" + num(needs.min_distance) +
                       ", " + num(needs.max_distance) + "]");
   bool transmission = p.T > 0.0;
-  const bool kajs = p.glint_model == GlintModel::Kajs;
-  bool glints = p.glint_model != GlintModel::None &&
+  const bool kajs = p.glint_model == kGlintModelKajs;
+  bool glints = p.glint_model != kGlintModelNone &&
                 (kajs ? (p.I_glints[0] > 0 || p.I_glints[1] > 0 || p.I_glints[2] > 0) : p.glints.intensity > 0);
   bool far = true, close = true;
   if (debug == 0) {
@@ -309,9 +387,30 @@ std::vector<std::string> shader_defines(const SandParams& p, const SandFeatures&
   // kajs glints live in L_close only; the other models also add their
   // smooth limit to L_far (shaders/sand/sand.glsl)
   if (!close && kajs) glints = false;
-  return {"SAND_TRANSMISSION=" + std::to_string(int(transmission)), "SAND_GLINTS=" + std::to_string(int(glints)),
-          "SAND_GLINT_MODEL=" + std::to_string(uint32_t(p.glint_model)), "SAND_CLOSE=" + std::to_string(int(close)),
-          "SAND_FAR=" + std::to_string(int(far)), "SAND_DEBUG=" + std::to_string(debug)};
+  std::vector<std::string> out = {
+      "SAND_TRANSMISSION=" + std::to_string(int(transmission)), "SAND_GLINTS=" + std::to_string(int(glints)),
+      "SAND_GLINT_MODEL=" + std::to_string(p.pack().glint_model), "SAND_CLOSE=" + std::to_string(int(close)),
+      "SAND_FAR=" + std::to_string(int(far)), "SAND_DEBUG=" + std::to_string(debug)};
+  if (const GlintModelDecl* d = p.glint_decl(); d && glints)
+    for (auto& def : glint_model_defines(*d)) out.push_back(std::move(def));
+  return out;
+}
+
+std::vector<std::string> glint_model_defines(const GlintModelDecl& d) {
+  std::string fields, values;
+  for (size_t i = 0; i < d.parameters.size(); ++i) {
+    const std::string& n = d.parameters[i].name;
+    fields += "float " + n + ";";
+    values += "q." + n + "=p.glint_parameters[" + std::to_string(i / 4) + "][" + std::to_string(i % 4) + "];";
+  }
+  std::vector<std::string> out = {"GLINT_MODEL_INCLUDE", std::string(kIncludeAliasPrefix) + "GLINT_MODEL_FILE=" + d.file};
+  out.push_back("GLINT_MODEL_HASH=h" + d.content_hash);  // the file's bytes (an identifier: h + hex) in every key
+  if (d.limit == "ggx") out.push_back("GLINT_LIMIT_GGX");
+  if (!fields.empty()) {
+    out.push_back("GLINT_MODEL_PARAMETERS=" + fields);
+    out.push_back("GLINT_MODEL_PARAMETER_VALUES=" + values);
+  }
+  return out;
 }
 
 }  // namespace glintlab::core

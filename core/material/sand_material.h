@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,12 +29,14 @@ struct SandParamsGPU {
   float SSS, R_s, T, R_t;
   float sigma_g, P, noise_scale, ior;
   float scattering, absorption, sigma_on, sig_a;
-  float sig_b, glint_intensity, glint_light_cone, glint_size_variation;
+  float sig_b, glint_intensity, glint_light_cone, glint_pad0;
   uint32_t appendix_compat, fresnel_half_vector, glint_model, energy_consistent;
   float glint_alpha[4];  // xy = alpha_g (u, v), zw = relative roughness (u, v)
-  float glint_log_density, glint_color_saturation, glint_half_vector_blend, glint_pad1;
+  float glint_log_density, glint_pad1, glint_pad2, glint_pad3;
+  float glint_parameters[kMaxGlintParameters];  // the glint_D model's parameters, declaration order
 };
-static_assert(sizeof(SandParamsGPU) == 256, "SandParamsGPU must match the std140 GLSL struct");
+static_assert(sizeof(SandParamsGPU) == 288, "SandParamsGPU must match the std140 GLSL struct");
+static_assert(offsetof(SandParamsGPU, glint_parameters) == 256, "std140 offset");
 static_assert(offsetof(SandParamsGPU, I_glints) == 128, "std140 offset");
 static_assert(offsetof(SandParamsGPU, SSS) == 144, "std140 offset");
 static_assert(offsetof(SandParamsGPU, sigma_g) == 160, "std140 offset");
@@ -64,8 +68,10 @@ struct SandFeatures {
   std::string debug_output = "final";  // one of SandParams::debug_output_names()
 };
 
-// The microdetail glints of Zirr & Kaplanyan 2016 (glint models grains, zirr,
-// beckmann), JSON object "glints"; names after the paper's sec. 4.5.
+// The parameters every glint_D model shares (Zirr & Kaplanyan 2016 sec.
+// 4.5), JSON object "glints"; names after the paper's sec. 4.5. A model's
+// own parameters (its declaration, core/material/glint_model.h) are given in
+// "glints" too, by their names.
 struct SandGlintParams {
   // log10 of microdetails per unit uv area, [-3, 14] (1e-3 .. 1e14). Default 7: the scene
   // meshes span uv [0, 1] once over 10 units (core/scene/mesh.h), so 1e7 per
@@ -80,18 +86,13 @@ struct SandGlintParams {
   double log_density = 7.0;
   std::array<double, 2> alpha_g{0.3, 0.3};             // global Beckmann roughness (u, v), [1e-3, 1]
   std::array<double, 2> relative_roughness{0.1, 0.1};  // alpha_l / alpha_g of a microdetail (u, v), [1e-3, 1]
-  double size_variation = 0.0;  // std. dev. of the per-cell microdetail size factor (zirr, Listing 1 line 16), [0, 2]
   double intensity = 1.0;       // overall gain (sec. 4.5), [0, 1e6]; 1 = the physical BRDF
   // Light-cone angular radius (rad), [0, 0.5]; unset ("sun" in JSON): the
   // sun's angular radius of the frame (frame_sun_dir.w).
   std::optional<double> light_cone;
-  double color_saturation = 0.0;  // coloured glints (sec. 4.5): 0 = white, 1 = full colour wheel, [0, 1]
-  // zirr only, a glintlab extension (off: Listing 1 exactly): a cell's
-  // reflectance is the bilinear blend of its counts in the four half-vector
-  // bins nearest to h instead of the count of the one bin h falls in, so a
-  // glint fades as h moves across a bin boundary instead of being redrawn.
-  // The expectation per cell is unchanged (each bin's is P(h) m0).
-  bool half_vector_blend = false;
+  // The model's own parameters that differ from their declared defaults
+  // (bools as 0/1); SandParams::glint_parameter() reads one with its default.
+  std::map<std::string, double> model;
 };
 
 struct SandParams {
@@ -116,14 +117,22 @@ struct SandParams {
   double sigmoid_a = 2.0;     // eq. 4.37 stretch, (0, 1e4]
   double sigmoid_b = 1.3;     // eq. 4.37 shift, distance units, [0, 1e7]
   double ior = 1.458;         // grain IOR (silica), [1, 3]
-  GlintModel glint_model = GlintModel::Kajs;  // kGlintModelNames
+  std::string glint_model = kGlintModelKajs;  // one of glint_model_names(), or a user file's name
+  // The declaration of a user's model file ("glint_model": {"file": ...}); null for the others.
+  std::shared_ptr<const GlintModelDecl> glint_file;
   std::string fresnel_half_vector = "macro_normal";  // "macro_normal" | "light_view"
   uint32_t appendix_compat = 0;  // SandCompat bits; 0 = chapter 4 everywhere
   // false: the thesis' units (sky diffuse rho/pi L_sky^Omega = rho E/pi^2; the
   // sun's Fresnel, transmission and kajs glint terms without 1/pi); true:
   // radiometrically consistent (shaders/sand/DIFFERENCES.md "Units").
   bool energy_consistent = false;
-  SandGlintParams glints;  // "glints": the grains/zirr/beckmann models
+  SandGlintParams glints;  // "glints": the glint_D models
+
+  // The glint_D model's declaration; nullptr for "kajs" and "none".
+  const GlintModelDecl* glint_decl() const;
+  // A parameter of the glint_D model: its value, else its default. ConfigError
+  // when the model does not declare it.
+  double glint_parameter(const std::string& name) const;
 
   // "thesis-default" (Appendix A defaults), "thesis-hdri-match" (thesis
   // sec. 6.2, Fig. 6.5/6.8), "thesis-appendix-a" (defaults + every
@@ -147,9 +156,10 @@ struct SandParams {
   static int debug_output_define(const std::string& name);
 
   // The parameters whose supersampled image is the ground truth of this
-  // material: zirr filters the grains microstructure, so its truth is
-  // grains (same microdetails, point-evaluated); every other model is its
-  // own truth. The close-to-far transition's sigmoid (not part of the truth)
+  // material: the model its declaration names as truth (zirr filters the
+  // grains microstructure, so its truth is grains: the same microdetails,
+  // point-evaluated), with the parameters of the same names that the truth
+  // declares; "self": the model itself. The close-to-far transition's sigmoid (not part of the truth)
   // is reset, so variants that differ only in it share one reference.
   SandParams reference() const;
 };
@@ -163,10 +173,19 @@ constexpr double kSandPruneWeight = 1e-4;
 // Defines ("NAME=VALUE") for shaders/sand/sand.glsl: SAND_TRANSMISSION=0
 // when T = 0; SAND_GLINTS=0 when glint_model is "none", or "kajs" with
 // I_glints = 0 or the close field pruned, or another model with
-// glints.intensity = 0; SAND_GLINT_MODEL=<value of glint_model> (only that
-// model is compiled); SAND_FAR=0 when sig(max_distance) < 1e-4; SAND_CLOSE=0
+// glints.intensity = 0; SAND_GLINT_MODEL=<glint_model_gpu_id> (only that
+// model is compiled; a glint_D model's file and parameters by
+// glint_model_defines); SAND_FAR=0 when sig(max_distance) < 1e-4; SAND_CLOSE=0
 // when 1 - sig(min_distance) < 1e-4; SAND_DEBUG=<value>. A debug output
 // keeps both fields (no close/far pruning).
 std::vector<std::string> shader_defines(const SandParams& params, const SandFeatures& needs);
+
+// The defines that build a glint_D model into shaders/sand/glint_models.glsl:
+// GLINT_MODEL_INCLUDE, the include alias GLINT_MODEL_FILE (its file),
+// GLINT_MODEL_HASH (its content hash, so the reference cache key changes with
+// any byte of it), its parameters as GlintQuery fields read from
+// SandParams.glint_parameters, and GLINT_LIMIT_GGX for a model whose smooth
+// limit is GGX.
+std::vector<std::string> glint_model_defines(const GlintModelDecl& model);
 
 }  // namespace glintlab::core

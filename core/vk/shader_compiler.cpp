@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <regex>
@@ -60,12 +61,18 @@ std::string read_file(const fs::path& p) {
   return ss.str();
 }
 
-// Resolves #include "x" against the including file's folder, then the shader root.
+// Resolves #include "x" as an include alias (kIncludeAliasPrefix) when one
+// is named x, else against the including file's folder, then the shader root.
 class Includer : public glslang::TShader::Includer {
  public:
-  explicit Includer(fs::path root) : root_(std::move(root)) {}
+  Includer(fs::path root, std::map<std::string, fs::path> aliases)
+      : root_(std::move(root)), aliases_(std::move(aliases)) {}
 
   IncludeResult* includeLocal(const char* name, const char* includer, size_t /*depth*/) override {
+    if (auto a = aliases_.find(name); a != aliases_.end()) {
+      fs::path p = a->second.is_absolute() ? a->second : root_ / a->second;
+      return fs::is_regular_file(p) ? make(p) : nullptr;
+    }
     fs::path from = fs::path(includer).parent_path();
     for (const fs::path& base : {from, root_}) {
       fs::path p = base / name;
@@ -88,11 +95,30 @@ class Includer : public glslang::TShader::Includer {
     return new IncludeResult(p.lexically_normal().string(), text->data(), text->size(), text);
   }
   fs::path root_;
+  std::map<std::string, fs::path> aliases_;
 };
+
+bool is_alias(const std::string& d) { return d.rfind(kIncludeAliasPrefix, 0) == 0; }
+
+// "include:NAME=PATH" entries of `defines`: NAME -> PATH.
+std::map<std::string, fs::path> include_aliases(const std::vector<std::string>& defines) {
+  std::map<std::string, fs::path> out;
+  for (const auto& d : defines) {
+    if (!is_alias(d)) continue;
+    auto eq = d.find('=');
+    std::string name = d.substr(kIncludeAliasPrefix.size(), eq == std::string::npos ? std::string::npos
+                                                                                   : eq - kIncludeAliasPrefix.size());
+    if (eq == std::string::npos || name.empty() || eq + 1 == d.size())
+      throw ShaderCompileError("shader include alias \"" + d + "\": expected include:NAME=PATH");
+    out[name] = fs::path(d.substr(eq + 1));
+  }
+  return out;
+}
 
 std::string preamble(const std::vector<std::string>& defines) {
   std::string s = "#extension GL_GOOGLE_include_directive : require\n";
   for (const auto& d : defines) {
+    if (is_alias(d)) continue;
     auto eq = d.find('=');
     std::string name = d.substr(0, eq);
     if (name.empty() || !std::regex_match(name, std::regex("[A-Za-z_][A-Za-z0-9_]*")))
@@ -163,7 +189,7 @@ struct Prepared {
   glslang::TShader sh;
   Includer includer;
   Prepared(const std::string& root, const std::string& path, ShaderStage stage, const std::vector<std::string>& defines)
-      : src(load(root, path, defines)), sh(to_glslang(stage)), includer(root) {
+      : src(load(root, path, defines)), sh(to_glslang(stage)), includer(root, include_aliases(defines)) {
     setup(sh, src, &text, &name, &len);
   }
 };

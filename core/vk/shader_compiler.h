@@ -8,11 +8,16 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace glintlab::core {
 
 enum class ShaderStage { Vertex, Fragment, Compute };
+
+// A `defines` entry "include:NAME=PATH" is no macro but an include alias:
+// #include "NAME" reads PATH (absolute, or relative to the shader folder).
+inline constexpr std::string_view kIncludeAliasPrefix = "include:";
 
 class ShaderCompileError : public std::runtime_error {
  public:

@@ -11,6 +11,7 @@ void add_all_commands(CLI::App& app, int& exit_code) {
   add_report_command(app, exit_code);
   add_stress_command(app, exit_code);
   add_tune_command(app, exit_code);
+  add_glint_test_command(app, exit_code);
 }
 
 }  // namespace glintlab

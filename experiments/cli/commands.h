@@ -15,6 +15,7 @@ void add_check_command(CLI::App& app, int& exit_code);     // check (experiments
 void add_report_command(CLI::App& app, int& exit_code);    // report (experiments/report/report.cpp)
 void add_stress_command(CLI::App& app, int& exit_code);    // stress (experiments/stress/)
 void add_tune_command(CLI::App& app, int& exit_code);      // tune (experiments/tune/)
+void add_glint_test_command(CLI::App& app, int& exit_code);  // glint-test (experiments/glint_test/)
 
 // Every command above, in the order `glintlab --help` lists them (main, and the options fuzzer).
 void add_all_commands(CLI::App& app, int& exit_code);

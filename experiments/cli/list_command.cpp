@@ -27,7 +27,7 @@ void add_list_command(CLI::App& app, int& exit_code) {
           print("camera paths", core::CameraPath::builtin_names());
           print("scenes (mesh types)", {"plane", "wavy", "sphere", "dunes"});
           print("material presets", core::SandParams::preset_names());
-          print("glint models", enum_names(core::kGlintModelNames));
+          print("glint models", core::glint_model_names());
           print("debug outputs", core::SandParams::debug_output_names());
           print("metrics", metrics::metric_names());
           print("metric groups", metrics::metric_group_names());

@@ -18,7 +18,8 @@ void add_tune_command(CLI::App& app, int& exit_code) {
   c->add_option("--base", o->base, "the variant whose options are searched")->required();
   c->add_option("--space", o->space,
                 "KEY=RANGE (repeatable): KEY a dotted option path (taa.alpha, ssaa_grid, material.glint_sigma), "
-                "RANGE lo:hi, lo:hi:log or a,b,... (choices)")
+                "RANGE lo:hi, lo:hi:log or a,b,... (choices); material.glints.NAME alone: the declared range of a parameter of "
+                "the base variant's glint model")
       ->required();
   // Split here, not by CLI11 (which drops empty items): "deltaE2000,,flip" is refused, not read as two.
   auto objectives = std::make_shared<std::vector<std::string>>();

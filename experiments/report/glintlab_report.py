@@ -848,7 +848,8 @@ class Report:
         for v in variants:
             own = ({k: x for k, x in v["taa"].items() if k not in shared} if isinstance(v.get("taa"), dict)
                    else None)
-            items.append({"v": v, "own": None if own is None else [(k, option_text(x)) for k, x in own.items()]})
+            items.append({"v": v, "own": None if own is None else [(k, option_text(x)) for k, x in own.items()],
+                          "params": list((v.get("glint_parameters") or {}).items())})
         return {"lines": items, "shared": [(k, option_text(x)) for k, x in shared.items()],
                 "models": len({v.get("glint_model") for v in variants}) > 1}
 

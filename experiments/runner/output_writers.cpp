@@ -210,7 +210,12 @@ void SummaryWriter::finish() {
       e["frames"] = v.frames;
     } else {
       e["aa"] = enum_name(kAaNames, v.aa);
-      e["glint_model"] = enum_name(core::kGlintModelNames, pv.params.glint_model);
+      e["glint_model"] = pv.params.glint_model;
+      if (const core::GlintModelDecl* gd = pv.params.glint_decl()) {
+        nlohmann::json gp = nlohmann::json::object();
+        for (const auto& p : gd->parameters) gp[p.name] = pv.params.glint_parameter(p.name);
+        e["glint_parameters"] = gp;  // the model's own, defaults included
+      }
       e["spp"] = v.samples_per_pixel();
       if (v.aa == AaMethod::Ssaa) e["ssaa_grid"] = v.ssaa_grid;
       if (v.aa == AaMethod::Taa) e["taa"] = taa_json(v.taa);

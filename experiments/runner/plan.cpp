@@ -5,6 +5,7 @@
 #include "experiments/runner/variant_factory.h"
 
 #include <algorithm>
+#include <filesystem>
 
 namespace glintlab {
 
@@ -56,7 +57,9 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
   // Names: "reference" alone; else by the truth's glint model ("reference-grains"), and by the first
   // variant where two references share a model.
   auto model_of = [&](const RunPlan::Reference& r) {
-    return std::string(enum_name(core::kGlintModelNames, plan.variants[size_t(r.variants.front())].params.reference().glint_model));
+    const core::SandParams truth = plan.variants[size_t(r.variants.front())].params.reference();
+    // a user's model file by its file name without the extension
+    return truth.glint_file ? std::filesystem::path(truth.glint_model).stem().string() : truth.glint_model;
   };
   for (auto& r : plan.references) {
     int same_model = 0;

@@ -62,7 +62,7 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
 }
 
 // The content of every file the run reads besides the experiment file (whose JSON is in the header):
-// the camera-path file, the HDRI, the OCIO config, the frames of frame sources. A resume or a merge
+// the camera-path file, the HDRI, the OCIO config, the glint model files, the frames of frame sources. A resume or a merge
 // with any of them changed is refused, naming it.
 nlohmann::json run_input_hashes(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
   nlohmann::json out = nlohmann::json::object();
@@ -70,6 +70,8 @@ nlohmann::json run_input_hashes(const ExperimentSpec& spec, const metrics::Color
   if (!spec.sky.hdri.empty() && fs::is_regular_file(spec.sky.hdri))
     out["hdri " + spec.sky.hdri] = file_content_hash(spec.sky.hdri);
   out["ocio_config"] = file_content_hash(cm.config_path());
+  for (const auto& v : spec.variants)
+    if (v.material.glint_file) out["glint_model " + v.material.glint_file->file] = file_content_hash(v.material.glint_file->file);
   auto add = [&](const std::string& seq, const std::string& what) {
     if (seq.empty()) return;
     const std::vector<int> numbers = first_frame_numbers(seq, spec.frames, what);

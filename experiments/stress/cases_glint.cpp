@@ -1,5 +1,5 @@
 // Stress cases of the microdetail glint models (Zirr & Kaplanyan 2016;
-// shaders/sand/glint_*.glsl, glints_*.glsl, binomial.glsl) through
+// shaders/sand/glint_*.glsl, glint/models/*.glsl, common/binomial.glsl) through
 // shaders/tests/glint_terms.comp and glint_math.comp against the fp64 twin
 // (core/material/fp64/glint_fp64.h), stage by stage as
 // tests/core/material/glint_models.cpp does: each stage is fed the GPU's fp32
@@ -284,7 +284,7 @@ StressCaseResult energy_case(Env& env, bool fast) {
   return res;
 }
 
-// ---- binomial draws (sand/binomial.glsl) for n up to 1e12 and p in {0, 1e-12, 0.5, 1}
+// ---- binomial draws (common/binomial.glsl) for n up to 1e12 and p in {0, 1e-12, 0.5, 1}
 StressCaseResult binomial_case(Env& env, bool random_p, const std::string& name) {
   Rng r(name);
   struct Draw {
@@ -439,7 +439,7 @@ void add_glint_cases(std::vector<Case>& cases) {
                    },
                    {false, true, true, true, true}, 2e-3, "grains at 1e-3 .. 1e12 microdetails per uv unit"});
   for (uint32_t m : {G, Z, B}) {
-    std::string mn = m == G ? "grains" : (m == Z ? "zirr" : "beckmann");
+    std::string mn = gr::twin_name(m);
     specs.push_back({"glint.grazing-view." + mn, m == Z, {m},
                      [deg](Rng& r, Item& c) {
                        vec3 t1 = c.t, t2 = c.b * (glm::dot(glm::cross(c.t, c.b), c.n) > 0 ? 1.0 : -1.0);

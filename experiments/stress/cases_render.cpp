@@ -45,7 +45,7 @@ struct ShotResult {
   std::vector<Image> frames;
 };
 
-core::SandParams sand(core::GlintModel model) {
+core::SandParams sand(const std::string& model) {
   core::SandParams p = core::SandParams::preset("thesis-default");
   p.glint_model = model;
   p.noise_scale = 400;
@@ -132,17 +132,25 @@ core::CameraState look(glm::vec3 from, glm::vec3 at, float fov = 40, float near 
   return c;
 }
 
-const std::vector<core::GlintModel> kModels = {core::GlintModel::Kajs, core::GlintModel::Grains, core::GlintModel::Zirr,
-                                               core::GlintModel::Beckmann};
-const std::vector<core::GlintModel> kKajsZirr = {core::GlintModel::Kajs, core::GlintModel::Zirr};
+// Every model but "none": kajs and each glint_D model of the registry.
+std::vector<std::string> all_models() {
+  std::vector<std::string> out;
+  for (const auto& n : core::glint_model_names())
+    if (n != core::kGlintModelNone) out.push_back(n);
+  return out;
+}
+// The footprint-filtering model (the one whose walk and binomial draws are stressed) and its smooth limit.
+const std::string kZirr = "zirr";
+std::string zirr_limit() { return core::find_builtin_glint_model(kZirr)->limit; }
+const std::vector<std::string> kKajsZirr = {core::kGlintModelKajs, kZirr};
 
-std::string model_name(core::GlintModel m) { return std::string(enum_name(core::kGlintModelNames, m)); }
+std::string model_name(const std::string& m) { return m; }
 
 // One setting of a render case: what it changes on the shot the row makes.
 struct Setting {
   std::string label;                      // after the model's name in the shot's label
   std::function<void(Shot&)> apply;       // empty: the row's shot as it is
-  std::optional<core::GlintModel> model;  // rendered with this model only (else with each of the row's)
+  std::optional<std::string> model;  // rendered with this model only (else with each of the row's)
 };
 
 // A render case: every setting rendered with each model (in that order: settings, then models). A shot
@@ -151,7 +159,7 @@ struct Setting {
 struct RenderRow {
   std::string name;
   bool fast;  // part of the --fast subset
-  std::vector<core::GlintModel> models;  // each setting is rendered with each (unless it names its own)
+  std::vector<std::string> models;  // each setting is rendered with each (unless it names its own)
   std::vector<Setting> settings;
   std::string what;  // what the case stresses (detail)
   std::function<std::shared_ptr<const core::Mesh>()> mesh;  // made once per case (empty: plane(20, 4))
@@ -170,7 +178,7 @@ std::vector<Shot> shots_of(const RenderRow& row) {
   auto mesh = row.mesh ? row.mesh() : plane(20, 4);
   std::vector<Shot> shots;
   for (const Setting& set : row.settings)
-    for (core::GlintModel m : set.model ? std::vector<core::GlintModel>{*set.model} : row.models) {
+    for (const std::string& m : set.model ? std::vector<std::string>{*set.model} : row.models) {
       Shot s;
       s.label = model_name(m) + (set.label.empty() ? "" : " " + set.label);
       s.params = sand(m);
@@ -224,15 +232,15 @@ std::vector<Setting> material_extremes() {
                               s.params.glints.relative_roughness = {P == 0 ? 1e-3 : 1.0, 1e-3};
                               s.light.sun_dir = {0, 1, -1};
                             },
-                            kModels[k++ % 4]});
+                            all_models()[k++ % all_models().size()]});
   return settings;
 }
 
 std::vector<RenderRow> render_rows() {
   std::vector<RenderRow> rows;
   // grazing views at 80 .. 89.99 deg, one case per model
-  for (core::GlintModel m : kModels)
-    rows.push_back({"render.grazing-view." + model_name(m), m == core::GlintModel::Zirr, {m},
+  for (const std::string& m : all_models())
+    rows.push_back({"render.grazing-view." + model_name(m), m == kZirr, {m},
                     sweep("", {80.0, 89.0, 89.9, 89.99},
                           [](Shot& s, double deg) { s.cam = grazing_camera(deg, 1.0f); }, " deg"),
                     model_name(m) + ", a plane seen at 80, 89, 89.9, 89.99 deg from its normal at the image centre "
@@ -254,13 +262,13 @@ std::vector<RenderRow> render_rows() {
                     spec.tessellation = 24;
                     return std::make_shared<const core::Mesh>(core::build_mesh(spec));
                   }});
-  rows.push_back({"render.camera-in-plane", false, {core::GlintModel::Zirr},
+  rows.push_back({"render.camera-in-plane", false, {kZirr},
                   sweep("eye at y = ", {0.0f, 1e-7f, -1e-7f},
                         [](Shot& s, double y) {
                           s.cam = look({-5, float(y), 0.3f}, {5, float(y), 0}, 40, 1e-4f, 100);
                         }),
                   "zirr, the eye in the plane of the surface and 1e-7 above and below it (edge-on triangles)"});
-  rows.push_back({"render.backlit", true, kModels,
+  rows.push_back({"render.backlit", true, all_models(),
                   {{"",
                     [](Shot& s) {
                       s.params.T = 1.0;
@@ -310,7 +318,7 @@ std::vector<RenderRow> render_rows() {
                     }}},
                   "kajs and zirr looking straight down from 1e-6 (pixel footprints 1e-9 grain cells, 1e-12 "
                   "microdetail cells) and from 1e3 (1e3 grain cells, 1e5 microdetail cells)"});
-  rows.push_back({"render.sun-1e6", true, kModels,
+  rows.push_back({"render.sun-1e6", true, all_models(),
                   {{"",
                     [](Shot& s) {
                       s.params.I_glints = {1e6, 1e6, 1e6};
@@ -338,10 +346,10 @@ std::vector<RenderRow> render_rows() {
                           s.format = VK_FORMAT_R16G16B16A16_SFLOAT;
                         }),
                   "kajs and zirr into an RGBA16F colour target, sun 6 and 1e4 (glints up to ~1e5 > half's 65504)"});
-  rows.push_back({"render.resolution-1x1", true, kModels,
+  rows.push_back({"render.resolution-1x1", true, all_models(),
                   {{"", {}},
                    {"taa 1x1", [](Shot& s) { s.variant = true, s.aa = AaMethod::Taa, s.frames = 4; },
-                    core::GlintModel::Beckmann}},
+                    zirr_limit()}},
                   "every model at 1x1 (one pixel: its footprint is the whole view), and TAA at 1x1 over 4 frames", {},
                   [](Shot& s) { s.width = s.height = 1; }});
   rows.push_back({"render.resolution-4096x16", true, kKajsZirr,
@@ -351,7 +359,7 @@ std::vector<RenderRow> render_rows() {
                       s.width = 4096, s.height = 16;
                     }}},
                   "kajs and zirr at 4096x16 (aspect 256: pixels 1/16 of the fov tall, extremely wide view)"});
-  rows.push_back({"render.zirr-density-1e-3-to-1e12", true, {core::GlintModel::Zirr},
+  rows.push_back({"render.zirr-density-1e-3-to-1e12", true, {kZirr},
                   sweep("log_density ", {-3.0, 0.0, 3.0, 6.0, 9.0, 12.0},
                         [](Shot& s, double ld) {
                           s.params.glints.log_density = ld;
@@ -370,7 +378,7 @@ std::vector<RenderRow> render_rows() {
 
 // ---- energy over the image: zirr (debug output "glints") vs beckmann, a pair of shots per density
 RenderRow energy_row() {
-  return {"render.energy-zirr-vs-beckmann", false, {core::GlintModel::Zirr, core::GlintModel::Beckmann},
+  return {"render.energy-zirr-vs-beckmann", false, {kZirr, zirr_limit()},
           sweep("log_density ", {6.0, 9.0, 12.0}, [](Shot& s, double ld) { s.params.glints.log_density = ld; }),
           "sum over a 64x36 image of a plane (highlight in view) of zirr's glint radiance / beckmann's, densities "
           "1e6, 1e9, 1e12 per uv unit (every pixel covers 10 .. 1e7 microdetails)",

@@ -62,7 +62,7 @@ struct Draw {
 
 using Modifier = std::function<void(Draw&)>;
 
-Item make_item(std::mt19937_64& rng, core::GlintModel model, const Modifier& mod) {
+Item make_item(std::mt19937_64& rng, const std::string& model, const Modifier& mod) {
   Draw d{rng, core::SandParams{}, vec3(0, 0, 1), vec3(0, 0, 1), vec3(0, 0, 1), vec3(0), 1.0, vec3(1), vec3(1)};
   core::SandParams& sp = d.sp;
   for (auto& c : sp.palette) c = {d.U(), d.U(), d.U()};
@@ -87,10 +87,14 @@ Item make_item(std::mt19937_64& rng, core::GlintModel model, const Modifier& mod
   sp.glints.alpha_g = {log_uniform(rng, 0.05, 1), log_uniform(rng, 0.05, 1)};
   sp.glints.relative_roughness = {log_uniform(rng, 0.05, 1), log_uniform(rng, 0.05, 1)};
   sp.glints.log_density = 3 + 9 * d.U();
-  sp.glints.size_variation = d.U() < 0.5 ? 0.0 : 2 * d.U();
+  // a model's own parameters where it declares them (the draws are made for every model)
+  auto own = [&sp](const char* name, double v) {
+    if (const core::GlintModelDecl* decl = sp.glint_decl(); decl && decl->parameter(name)) sp.glints.model[name] = v;
+  };
+  own("size_variation", d.U() < 0.5 ? 0.0 : 2 * d.U());
   sp.glints.intensity = log_uniform(rng, 0.1, 10);
   if (d.U() < 0.5) sp.glints.light_cone = 0.5 * d.U();
-  sp.glints.color_saturation = d.U() < 0.5 ? 0.0 : d.U();
+  own("color_saturation", d.U() < 0.5 ? 0.0 : d.U());
   d.n = d.unit();
   d.wo = d.upper(d.n);
   d.wi = d.U() < 0.7 ? d.upper(d.n) : d.unit();
@@ -128,7 +132,7 @@ ref::Terms ref_terms(const Item& c) { return reference::harness::sand_terms_of(c
 struct SandCaseSpec {
   std::string name;
   bool fast;
-  std::vector<core::GlintModel> models;  // items cycle through them
+  std::vector<std::string> models;  // items cycle through them
   Modifier mod;
   double bound;        // on max_rel_error
   bool check_basis = false;  // also the Frisvad basis of n (orthonormal, = fp64 within 1e-6)
@@ -144,7 +148,7 @@ StressCaseResult run_sand_case(Env& env, const SandCaseSpec& spec) {
   std::vector<float> in(n_items * kIn, 0.0f);
   for (size_t i = 0; i < n_items; ++i) reference::harness::write_sand_terms_input(items[i], &in[i * kIn]);
   std::vector<float> out =
-      core::run_compute(env.ctx, "tests/sand_terms.comp", {}, in, n_items * kOut, uint32_t(n_items));
+      core::run_compute(env.ctx, "tests/sand_terms.comp", reference::harness::twin_defines(), in, n_items * kOut, uint32_t(n_items));
 
   ValueScan scan;
   ErrorStat err;
@@ -187,7 +191,7 @@ StressCaseResult run_sand_case(Env& env, const SandCaseSpec& spec) {
     if (c.p.energy_consistent) S *= kPi;
     // the new glint models' terms as the GPU computed them
     vec3 L_g = r.L_g, L_far = r.L_far;
-    if (model == ref::kGlintGrains || model == ref::kGlintZirr || model == ref::kGlintBeckmann) {
+    if (model != ref::kGlintKajs && model != ref::kGlintNone) {
       L_g = vec3(o[33], o[34], o[35]);
       L_far = ref::L_far(r.L_brdf, r.L_f + vec3(o[68], o[69], o[70]), r.L_t, r.rho_n_intensity);
       S = std::max({S, L_g.x, L_g.y, L_g.z});
@@ -209,20 +213,29 @@ StressCaseResult run_sand_case(Env& env, const SandCaseSpec& spec) {
   return res;
 }
 
-const std::vector<core::GlintModel> kAllModels = {core::GlintModel::Kajs, core::GlintModel::Grains,
-                                                  core::GlintModel::Zirr, core::GlintModel::Beckmann,
-                                                  core::GlintModel::None};
+// kajs, every glint_D model with an fp64 twin, none.
+std::vector<std::string> all_models() {
+  std::vector<std::string> out;
+  for (const auto& n : core::glint_model_names())
+    if (!core::find_builtin_glint_model(n) || reference::glint::twin_of_gpu(core::glint_model_gpu_id(n)) != 0u)
+      out.push_back(n);
+  return out;
+}
+// The footprint-filtering model, whose walk is stressed at grazing angles, and its smooth limit.
+const std::string kZirr = "zirr";
+std::string zirr_limit() { return core::find_builtin_glint_model(kZirr)->limit; }
 
 }  // namespace
 
 void add_sand_cases(std::vector<Case>& cases) {
   const double deg = kPi / 180;
   std::vector<SandCaseSpec> specs;
-  auto model_name = [](core::GlintModel m) { return std::string(enum_name(core::kGlintModelNames, m)); };
+  auto model_name = [](const std::string& m) { return m; };
+  const std::vector<std::string> kAllModels = all_models();
   // grazing views 80-89.99 deg, one case per glint model
-  for (core::GlintModel m : kAllModels) {
-    if (m == core::GlintModel::None) continue;
-    specs.push_back({"sand.grazing-view." + model_name(m), m == core::GlintModel::Kajs || m == core::GlintModel::Zirr,
+  for (const std::string& m : kAllModels) {
+    if (m == core::kGlintModelNone) continue;
+    specs.push_back({"sand.grazing-view." + model_name(m), m == core::kGlintModelKajs || m == kZirr,
                      {m},
                      [deg](Draw& d) {
                        d.wo = d.at_angle(d.n, (80 + 9.99 * d.U()) * deg);
@@ -259,14 +272,14 @@ void add_sand_cases(std::vector<Case>& cases) {
                      d.wi = d.U() < 0.3 ? d.n : d.upper(d.n);
                    },
                    1e-3, true, "n = +z and near it, w_i = n in 30 %"});
-  specs.push_back({"sand.object-coords-1e6", true, {core::GlintModel::Kajs, core::GlintModel::None},
+  specs.push_back({"sand.object-coords-1e6", true, {core::kGlintModelKajs, core::kGlintModelNone},
                    [](Draw& d) {
                      d.x_obj = vec3(d.N(), d.N(), d.N()) * log_uniform(d.rng, 1e3, 1e6);
                      d.sp.noise_scale = log_uniform(d.rng, 1, 1e6);
                      if (d.U() < 0.2) d.sp.noise_scale = 1e6;
                    },
                    1e-3, false, "object coordinates up to 1e6, noise_scale up to 1e6 (products up to 1e12)"});
-  specs.push_back({"sand.noise-scale-1e6", false, {core::GlintModel::Kajs},
+  specs.push_back({"sand.noise-scale-1e6", false, {core::kGlintModelKajs},
                    [](Draw& d) {
                      d.sp.noise_scale = 1e6;
                      d.x_obj = vec3(d.N(), d.N(), d.N()) * log_uniform(d.rng, 1e-6, 1e6);
@@ -282,7 +295,7 @@ void add_sand_cases(std::vector<Case>& cases) {
                      d.sp.glints.relative_roughness = {d.U() < 0.5 ? 1e-3 : 1.0, d.U() < 0.5 ? 1e-3 : 1.0};
                    },
                    1e-3, false, "R_s, R_t in {0, 1}, Oren-Nayar sigma in {0, pi/2}, glint alpha_g and relative roughness at 1e-3 and 1"});
-  specs.push_back({"sand.glint-sigma-1e-6-to-1", true, {core::GlintModel::Kajs},
+  specs.push_back({"sand.glint-sigma-1e-6-to-1", true, {core::kGlintModelKajs},
                    [](Draw& d) {
                      const double s[] = {1e-6, 1e-5, 1e-4, 1e-2, 1.0};
                      d.sp.glint_sigma = s[d.rng() % 5];
@@ -304,7 +317,7 @@ void add_sand_cases(std::vector<Case>& cases) {
                      d.dist = ds[d.rng() % 6];
                    },
                    1e-3, false, "P in {0, 1} at distances 0, 1e-30, 1e-6, 1, 1e6, 3e38 (exp(-P/d))"});
-  specs.push_back({"sand.sigmoid-a1e3-dist1e6", true, {core::GlintModel::Kajs, core::GlintModel::Beckmann},
+  specs.push_back({"sand.sigmoid-a1e3-dist1e6", true, {core::kGlintModelKajs, zirr_limit()},
                    [](Draw& d) {
                      const double a[] = {1e2, 1e3, 1e4};
                      d.sp.sigmoid_a = a[d.rng() % 3];
@@ -331,7 +344,7 @@ void add_sand_cases(std::vector<Case>& cases) {
                      for (auto& c : d.sp.palette) c = {v, v, v};
                    },
                    1e-3, false, "every grain colour 1 (and the range's 1e3 in 30 %)"});
-  specs.push_back({"sand.oren-nayar-0-and-90deg", true, {core::GlintModel::None, core::GlintModel::Beckmann},
+  specs.push_back({"sand.oren-nayar-0-and-90deg", true, {core::kGlintModelNone, zirr_limit()},
                    [deg](Draw& d) {
                      double u = d.U();
                      if (u < 0.25) d.wo = d.wi = d.n;

@@ -22,6 +22,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 #include <regex>
 
 extern char** environ;
@@ -174,7 +176,28 @@ json tune_definition(const TuneOptions& o, const json& experiment, const std::st
   const json base = variants[size_t(base_index)];
   json space = json::array();
   std::vector<std::string> keys;
-  for (const std::string& text : o.space) {
+  for (const std::string& given : o.space) {
+    // "material.glints.NAME" alone: the whole declared range of the base variant's glint model's parameter
+    std::string text = given;
+    const std::string own = "material.glints.";
+    if (given.find('=') == std::string::npos && given.rfind(own, 0) == 0) {
+      const std::string name = given.substr(own.size());
+      const VariantSpec* bv = nullptr;
+      for (const VariantSpec& v : spec.variants)
+        if (v.name == o.base) bv = &v;
+      const core::GlintModelDecl* decl = bv ? bv->material.glint_decl() : nullptr;
+      const core::GlintParameter* gp = decl ? decl->parameter(name) : nullptr;
+      if (!gp)
+        fail("--space " + given + ": without a range, the key must be a parameter the base variant's glint model (" +
+             (bv ? bv->material.glint_model : std::string("?")) + ") declares");
+      auto real = [](double v) {  // always with a point or exponent: a float range, not an int one
+        std::ostringstream r;
+        r << std::setprecision(17) << v;
+        std::string t = r.str();
+        return t.find_first_of(".e") == std::string::npos ? t + ".0" : t;
+      };
+      text = given + "=" + (gp->is_bool ? std::string("false,true") : real(gp->lo) + ":" + real(gp->hi));
+    }
     json s = parse_space(text);
     const std::string key = s["key"];
     if (key == "name") fail("--space name: the variant's name is not an option");

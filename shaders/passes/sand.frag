@@ -10,7 +10,7 @@
 // words, mapped onto the fields of sand/sand_params.glsl at their std140 offsets (a test renders both
 // ways and compares). A private global rather than a const: glslang does not fold uintBitsToFloat in
 // a constant initialiser, but every compiler after it folds it and all that follows from it.
-const uint sand_words[64] = uint[64](SAND_PARAMS_WORDS);
+const uint sand_words[72] = uint[72](SAND_PARAMS_WORDS);
 #define SAND_WORD_F(i) uintBitsToFloat(sand_words[i])
 #define SAND_WORD_V(i) vec4(SAND_WORD_F(i), SAND_WORD_F(i + 1), SAND_WORD_F(i + 2), SAND_WORD_F(i + 3))
 SandParams sand_params = SandParams(
@@ -20,10 +20,11 @@ SandParams sand_params = SandParams(
     SAND_WORD_F(36), SAND_WORD_F(37), SAND_WORD_F(38), SAND_WORD_F(39),      // SSS, R_s, T, R_t
     SAND_WORD_F(40), SAND_WORD_F(41), SAND_WORD_F(42), SAND_WORD_F(43),      // sigma_g, P, noise_scale, ior
     SAND_WORD_F(44), SAND_WORD_F(45), SAND_WORD_F(46), SAND_WORD_F(47),      // scattering, absorption, sigma_on, sig_a
-    SAND_WORD_F(48), SAND_WORD_F(49), SAND_WORD_F(50), SAND_WORD_F(51),      // sig_b, glint_intensity, _light_cone, _size_variation
+    SAND_WORD_F(48), SAND_WORD_F(49), SAND_WORD_F(50), SAND_WORD_F(51),      // sig_b, glint_intensity, _light_cone, pad
     sand_words[52], sand_words[53], sand_words[54], sand_words[55],          // appendix_compat, fresnel_half_vector, glint_model, energy_consistent
     SAND_WORD_V(56),                                                          // glint_alpha
-    SAND_WORD_F(60), SAND_WORD_F(61), SAND_WORD_F(62), SAND_WORD_F(63));     // glint_log_density, _color_saturation, _half_vector_blend, pad
+    SAND_WORD_F(60), SAND_WORD_F(61), SAND_WORD_F(62), SAND_WORD_F(63),      // glint_log_density, pads
+    vec4[2](SAND_WORD_V(64), SAND_WORD_V(68)));                               // glint_parameters
 #else
 layout(set = 0, binding = 1, std140) uniform MaterialUBO { SandParams sand_params; };
 #endif

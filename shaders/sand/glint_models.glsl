@@ -1,18 +1,28 @@
-// The sand's glint term L_g for the model SandParams::glint_model selects
-// (core/material/glint_model.h): the thesis' glints (sand/glints.glsl) or one
-// of the microdetail models of Zirr & Kaplanyan 2016 (grains, zirr) and
-// their smooth limit (beckmann), which are radiometrically consistent BRDFs
-// (sand/glints_beckmann.glsl). SAND_GLINT_MODEL (an integer define, set by
-// core::shader_defines) fixes the model at compile time so only its code is
-// built; without it the uniform's glint_model is read.
+// The sand's glint term L_g for a glint_D model (glint/query.glsl): the
+// thesis' glints (sand/glints.glsl, SAND_GLINT_KAJS) are a per-grain gate,
+// not an NDF, and are shaded by sand/sand.glsl itself; every other model is
+// one file with one function glint_D, radiometrically consistent through
+// sand/glint_radiance.glsl. GLINT_MODEL_INCLUDE (set by core::shader_defines
+// with the include GLINT_MODEL_FILE, the model's file) builds the model in;
+// with GLINT_D_EXTERNAL the includer defines glint_D itself (the test
+// harnesses); with neither (kajs, none) glint_D is 0 and never called.
 #ifndef GLINTLAB_SAND_GLINT_MODELS_GLSL
 #define GLINTLAB_SAND_GLINT_MODELS_GLSL
 
 #include "sand/sand_params.glsl"
 #include "sand/glint_roughness.glsl"
-#include "sand/glints_beckmann.glsl"
-#include "sand/glints_grains.glsl"
-#include "sand/glints_zirr.glsl"
+#include "sand/glint_radiance.glsl"
+#include "glint/query.glsl"
+#include "common/beckmann.glsl"
+#include "common/ggx.glsl"
+
+vec3 glint_D(GlintQuery q);
+
+#if defined(GLINT_MODEL_INCLUDE)
+#include "GLINT_MODEL_FILE"
+#elif !defined(GLINT_D_EXTERNAL)
+vec3 glint_D(GlintQuery q) { return vec3(0.0); }
+#endif
 
 #ifdef SAND_GLINT_MODEL
 #define SAND_GLINT_MODEL_OF(p) uint(SAND_GLINT_MODEL)
@@ -20,16 +30,51 @@
 #define SAND_GLINT_MODEL_OF(p) ((p).glint_model)
 #endif
 
-// The microdetail models' term of one shading point.
+// The model's parameters from the material block: "q.NAME = p.glint_parameters[i / 4][i % 4];" per
+// parameter in declaration order (core::glint_model_defines).
+#ifndef GLINT_MODEL_PARAMETER_VALUES
+#define GLINT_MODEL_PARAMETER_VALUES
+#endif
+
+// The model's smooth limit, which the far field shades and the conformance checks compare with:
+// D_g, Beckmann with alpha_g (Zirr & Kaplanyan 2016 eq. 3-4), or GGX with alpha_g where the
+// model's declaration says limit=ggx (GLINT_LIMIT_GGX).
+float glint_limit_D(GlintQuery q) {
+#ifdef GLINT_LIMIT_GGX
+  return ggx_D(q.h, q.alpha_g);
+#else
+  return beckmann_D(q.h, vec2(0.0), q.alpha_g);
+#endif
+}
+
+GlintQuery glint_query(SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy, GlintFrame f, GlintRoughness r) {
+  GlintQuery q;
+  q.uv = uv;
+  q.duv_dx = duv_dx;
+  q.duv_dy = duv_dy;
+  q.wi = f.wi;
+  q.wo = f.wo;
+  q.h = f.h;
+  q.alpha_g = r.alpha_g;
+  q.alpha_l = r.alpha_l;
+  q.density = exp2(3.32192809489 * p.glint_log_density);  // 10^d, d <= 14
+  q.sun_cone = r.cone;
+  q.rough = r;
+  GLINT_MODEL_PARAMETER_VALUES
+  return q;
+}
+
+// The glint term of one shading point.
 struct GlintTerm {
   vec3 L;       // radiance L_g
-  float cells;  // zirr: grid cells visited (Fig. 9); 0 for the other models
+  float cells;  // grid cells the model visited (glint_cells_visited)
 };
 
 // uv, duv_dx, duv_dy: surface coordinates and their screen derivatives;
 // t, b, n: the tangent frame (t along u, b along v); sun_cone: the sun's
-// angular radius (rad). model: SAND_GLINT_GRAINS, _ZIRR or _BECKMANN.
-GlintTerm glint_term(uint model, SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy, vec3 t, vec3 b, vec3 n, vec3 wi,
+// angular radius (rad). limit: the smooth limit (the far field) instead of
+// the model.
+GlintTerm glint_term(bool limit, SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy, vec3 t, vec3 b, vec3 n, vec3 wi,
                      vec3 wo, vec3 L_i, float sun_cone) {
   GlintTerm g;
   g.L = vec3(0.0);
@@ -37,15 +82,14 @@ GlintTerm glint_term(uint model, SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy
   GlintFrame f = glint_frame(t, b, n, wi, wo);
   if (!f.valid) return g;
   GlintRoughness r = glint_roughness(p, sun_cone);
-  vec3 D = vec3(0.0);
-  if (model == SAND_GLINT_BECKMANN) {
-    D = vec3(glint_beckmann_D(f, r));
-  } else if (model == SAND_GLINT_GRAINS) {
-    D = glint_grains_D(uv, f.h, r, p.glint_color_saturation);
-  } else if (model == SAND_GLINT_ZIRR) {
-    GlintZirr z = glint_zirr(uv, duv_dx, duv_dy, f.h, r, p.glint_size_variation, p.glint_color_saturation);
-    D = z.D;
-    g.cells = z.cells;
+  GlintQuery q = glint_query(p, uv, duv_dx, duv_dy, f, r);
+  vec3 D;
+  if (limit) {
+    D = vec3(glint_limit_D(q));
+  } else {
+    glint_cells_visited = 0.0;
+    D = glint_D(q);
+    g.cells = glint_cells_visited;
   }
   g.L = glint_radiance(D, f, r, p.ior, L_i, p.glint_intensity);
   return g;

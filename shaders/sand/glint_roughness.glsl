@@ -1,8 +1,8 @@
 // The biscale roughness of the microdetail glint models (Zirr & Kaplanyan
 // 2016 sec. 3 eq. 3-4, sec. 4.4, sec. 4.5): global alpha_g, microdetail
 // alpha_l, mesoscale alpha_m, the light cone, the anisotropic grid stretch,
-// and the density of microdetails. Shared by grains, zirr and beckmann, so
-// the three models have one definition of every lobe.
+// and the density of microdetails. Computed once for every glint_D model
+// (glint/query.glsl), so all models have one definition of every lobe.
 #ifndef GLINTLAB_SAND_GLINT_ROUGHNESS_GLSL
 #define GLINTLAB_SAND_GLINT_ROUGHNESS_GLSL
 
@@ -18,7 +18,6 @@ struct GlintRoughness {
   vec2 h_cell;     // half-vector quantisation cell, paraboloid units (sec. 4.3)
   float s_ref;     // reference cell size (uv): one microdetail per cell, 10^(-log_density / 2)
   float cone;      // light-cone angular radius used (rad)
-  bool hv_blend;   // zirr: blend the four nearest half-vector bins (glints.half_vector_blend)
 };
 
 // The stretch of sec. 4.4 is clamped to [2^-12, 2^12] (alpha_m = 0 on an axis,
@@ -61,7 +60,6 @@ GlintRoughness glint_roughness(SandParams p, float sun_cone) {
                   GLINT_MAX_STRETCH);
   g.stretch = gm > 1.0 ? vec2(1.0, 1.0 / gm) : vec2(gm, 1.0);
   g.s_ref = exp2(-0.5 * 3.32192809489 * p.glint_log_density);  // 10^(-d/2)
-  g.hv_blend = p.glint_half_vector_blend > 0.5;
   return g;
 }
 

@@ -7,7 +7,8 @@
 // pruning (core::shader_defines() decides; defaults = everything on):
 //   SAND_TRANSMISSION  0: no transmission code (T = 0: T_ext = 1, L_t = 0)
 //   SAND_GLINTS        0: no glint code (L_g = 0, no micro normals)
-//   SAND_GLINT_MODEL   integer SAND_GLINT_*: only that glint model is built
+//   SAND_GLINT_MODEL   integer SAND_GLINT_*: kajs, none or a glint_D model, whose
+//                      file GLINT_MODEL_INCLUDE builds in (sand/glint_models.glsl)
 //                      (undefined: SandParams.glint_model chooses at run time)
 //   SAND_CLOSE         0: L_final = L_far (close field never reached)
 //   SAND_FAR           0: L_final = L_close (far field never reached)
@@ -110,9 +111,9 @@ struct SandTerms {
   float g;               // G(R_s) * eq. 4.18, eq. 4.23
   vec3 L_d;              // eq. 4.11, 4.24, 4.26
   vec3 L_f;              // eq. 4.16
-  vec3 L_g;              // eq. 4.19-4.20, or the grains/zirr/beckmann glint term
-  float glint_cells;     // zirr: grid cells visited (SAND_DEBUG_GLINT_CELLS)
-  vec3 L_g_far;          // the far field's glints: beckmann for grains/zirr/beckmann, 0 for kajs
+  vec3 L_g;              // eq. 4.19-4.20, or the glint_D model's term
+  float glint_cells;     // grid cells the model visited (SAND_DEBUG_GLINT_CELLS)
+  vec3 L_g_far;          // the far field's glints: the smooth limit for a glint_D model, 0 for kajs
   vec3 L_s;              // eq. 4.23
   float T_ext;           // eq. 4.25
   float t;               // eq. 4.31
@@ -178,7 +179,7 @@ SandTerms sand_terms(SandParams p, SandSurface s, SandLight l) {
     float lobe = sun_lobe_scale(p.energy_consistent);
     r.L_g = L_g(r.g, l.L_i * lobe, l.L_sky_omega * lobe, p.I_glints.rgb, compat);
   } else if (glint_model != SAND_GLINT_NONE) {
-    GlintTerm g = glint_term(glint_model, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, l.L_i, l.cone);
+    GlintTerm g = glint_term(false, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, l.L_i, l.cone);
     r.L_g = g.L;
     r.glint_cells = g.cells;
   }
@@ -191,11 +192,11 @@ SandTerms sand_terms(SandParams p, SandSurface s, SandLight l) {
   r.L_oren = L_oren(s.n, l.wi, s.wo, p.sigma_on, compat);
   r.L_brdf = L_brdf(r.rho_n, r.f_s, r.f_e, r.L_oren, cos_ni, l.L_i, L_sky_diffuse, 1.0 - r.f, r.T_ext);
 #if SAND_GLINTS
-  // The far field is the footprint average of the close field: the glint
-  // models of Zirr & Kaplanyan 2016 average to their smooth limit there (the
-  // thesis' far field has no glints, eq. 4.36).
-  if (glint_model == SAND_GLINT_GRAINS || glint_model == SAND_GLINT_ZIRR || glint_model == SAND_GLINT_BECKMANN)
-    r.L_g_far = glint_term(SAND_GLINT_BECKMANN, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, l.L_i, l.cone).L;
+  // The far field is the footprint average of the close field: a glint_D
+  // model averages to its smooth limit there (the thesis' far field has no
+  // glints, eq. 4.36).
+  if (glint_model != SAND_GLINT_KAJS && glint_model != SAND_GLINT_NONE)
+    r.L_g_far = glint_term(true, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, l.L_i, l.cone).L;
 #endif
   r.L_far = L_far(r.L_brdf, r.L_f + r.L_g_far, r.L_t, r.rho_n_intensity);
 #endif

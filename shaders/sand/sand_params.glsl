@@ -17,12 +17,10 @@
 #define SAND_FRESNEL_MACRO_NORMAL 0u     // w_h = halfway of w_i and its mirror about n (= n)
 #define SAND_FRESNEL_LIGHT_VIEW 1u       // w_h = normalize(w_i + w_o)
 
-// glint_model values (core/material/glint_model.h has the one name table)
+// glint_model values (core/material/glint_registry.h)
 #define SAND_GLINT_NONE 0u
 #define SAND_GLINT_KAJS 1u      // Kajs 2022 eq. 4.17-4.23 (sand/glints.glsl)
-#define SAND_GLINT_GRAINS 2u    // explicit microdetails, point evaluation (sand/glints_grains.glsl)
-#define SAND_GLINT_ZIRR 3u      // Zirr & Kaplanyan 2016, footprint-filtered counting (sand/glints_zirr.glsl)
-#define SAND_GLINT_BECKMANN 4u  // the smooth limit of both: Cook-Torrance, Beckmann alpha_g (sand/glints_beckmann.glsl)
+// >= 2: a glint_D model (glint/query.glsl), 2 + its index in the registry
 
 struct SandParams {
   vec4 palette[8];    // rgb: C[0..7] grain colours (eq. 4.4), renderer's scene-linear space
@@ -40,18 +38,17 @@ struct SandParams {
   float sigma_on;     // Oren-Nayar sigma in radians (eq. 4.34)
   float sig_a;        // sigmoid stretch a (eq. 4.37)
   float sig_b;        // sigmoid shift b (eq. 4.37), camera-distance units
-  float glint_intensity;       // overall glint gain of the grains/zirr/beckmann models (Zirr & Kaplanyan 2016 sec. 4.5)
+  float glint_intensity;       // overall glint gain of the glint_D models (Zirr & Kaplanyan 2016 sec. 4.5)
   float glint_light_cone;      // light-cone angular radius (rad); < 0: the sun's (SandLight.cone)
-  float glint_size_variation;  // std. dev. of the per-cell microdetail-size factor (sec. 4.3, Listing 1 line 16)
+  float glint_pad0;
   uint appendix_compat;      // SAND_COMPAT_* bits
   uint fresnel_half_vector;  // SAND_FRESNEL_*
   uint glint_model;          // SAND_GLINT_*
   uint energy_consistent;    // 0: the thesis' factors; 1: radiometrically consistent (DIFFERENCES.md)
   vec4 glint_alpha;          // xy: global Beckmann roughness alpha_g (u, v); zw: relative roughness alpha_l / alpha_g (u, v)
   float glint_log_density;       // log10 of microdetails per unit uv area (sec. 4.5)
-  float glint_color_saturation;  // coloured glints: 0 = white, 1 = full colour wheel (sec. 4.5)
-  float glint_half_vector_blend;  // zirr: 0 = Listing 1's hard half-vector bins; 1 = bilinear over the four nearest bins
-  float glint_pad1;
+  float glint_pad1, glint_pad2, glint_pad3;
+  vec4 glint_parameters[2];      // the glint_D model's own parameters in declaration order (glint/query.glsl)
 };
 
 #endif  // GLINTLAB_SAND_PARAMS_GLSL

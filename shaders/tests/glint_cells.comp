@@ -24,7 +24,6 @@ void main() {
   vec2 uv = vec2(inputs[i], inputs[i + 1u]);
   vec2 dx = vec2(inputs[i + 2u], inputs[i + 3u]), dy = vec2(inputs[i + 4u], inputs[i + 5u]);
   SandParams p;
-  p.glint_half_vector_blend = 0.0;
   p.glint_alpha = vec4(inputs[i + 6u], inputs[i + 7u], inputs[i + 8u], inputs[i + 9u]);
   p.glint_log_density = inputs[i + 10u];
   p.glint_light_cone = 0.0;

@@ -17,7 +17,7 @@ layout(std430, set = 0, binding = 0) readonly buffer Inputs { float inputs[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float outputs[]; };
 layout(push_constant) uniform Push { uint count; };
 
-#include "sand/glint_models.glsl"
+#include "tests/glint_twins.glsl"
 
 #ifndef GRID
 #define GRID 16
@@ -36,15 +36,16 @@ void main() {
   SandParams p;
   p.glint_alpha = vec4(inputs[i + 12u], inputs[i + 13u], inputs[i + 14u], inputs[i + 15u]);
   p.glint_log_density = inputs[i + 16u];
-  p.glint_size_variation = inputs[i + 17u];
+  twin_size_variation = inputs[i + 17u];
   p.glint_light_cone = inputs[i + 18u];
-  p.glint_color_saturation = inputs[i + 19u];
+  twin_color_saturation = inputs[i + 19u];
   p.ior = inputs[i + 20u];
-  p.glint_half_vector_blend = inputs[i + 21u];
+  twin_half_vector_blend = inputs[i + 21u];
+  twin_model = GLINT_TWIN_ZIRR;
   p.glint_intensity = 1.0;
   const vec3 t = vec3(1.0, 0.0, 0.0), b = vec3(0.0, 1.0, 0.0), n = vec3(0.0, 0.0, 1.0), L_i = vec3(1.0);
-  GlintTerm z = glint_term(SAND_GLINT_ZIRR, p, uv, dx, dy, t, b, n, wi, wo, L_i, 0.0);
-  vec3 beck = glint_term(SAND_GLINT_BECKMANN, p, uv, dx, dy, t, b, n, wi, wo, L_i, 0.0).L;
+  GlintTerm z = glint_term(false, p, uv, dx, dy, t, b, n, wi, wo, L_i, 0.0);
+  vec3 beck = glint_term(true, p, uv, dx, dy, t, b, n, wi, wo, L_i, 0.0).L;
   // grains: the light and view are fixed, so the microfacet factor is applied once to the
   // mean NDF of the sub-samples (glint_term does the same per sample)
   GlintFrame f = glint_frame(t, b, n, wi, wo);
@@ -54,7 +55,7 @@ void main() {
     for (int sx = 0; sx < GRID; ++sx) {
       vec3 j = pcg3d_unit(pcg3d(uvec3(id, uint(sx), uint(sy) + 0x1000u)));
       vec2 off = (vec2(sx, sy) + j.xy) / float(GRID) - 0.5;
-      D += glint_grains_D(uv + off.x * dx + off.y * dy, f.h, r, p.glint_color_saturation);
+      D += glint_grains_D(uv + off.x * dx + off.y * dy, f.h, r, twin_color_saturation);
     }
   vec3 grains = f.valid ? glint_radiance(D / float(GRID * GRID), f, r, p.ior, L_i, 1.0) : vec3(0.0);
   for (int k = 0; k < 3; ++k) {

@@ -16,7 +16,7 @@ layout(push_constant) uniform Push { uint count; };
 #include "common/math.glsl"
 #include "common/wrapped_floor.glsl"
 #include "common/normal_quantile.glsl"
-#include "sand/binomial.glsl"
+#include "common/binomial.glsl"
 #include "sand/glint_footprint.glsl"
 
 #define GLINT_MATH_IN 12u

@@ -5,7 +5,7 @@
 //   0-1 uv, 2-3 duv_dx, 4-5 duv_dy, 6-8 t, 9-11 b, 12-14 n, 15-17 wi,
 //   18-20 wo, 21-23 L_i, 24-27 glint_alpha, 28 log_density,
 //   29 size_variation, 30 intensity, 31 light_cone, 32 color_saturation,
-//   33 ior, 34 sun cone, 35 model (SAND_GLINT_*), 36 half_vector_blend (0/1).
+//   33 ior, 34 sun cone, 35 model (its SandParams.glint_model id), 36 half_vector_blend (0/1).
 // Output record (GLINT_OUT floats):
 //   0-2 frame wi, 3-5 wo, 6-8 h, 9 valid; 10-23 GlintRoughness (alpha_surface,
 //   alpha_g, alpha_l, alpha_m, stretch, h_cell, s_ref, cone); 24 beckmann D,
@@ -13,14 +13,14 @@
 //   30 pmf, 31 m0, 32-33 paraboloid h; 34-39 footprint (s_c, level_f, level0,
 //   level1, weight0, weight1); 40-47, 48-55 the walks of both levels (c.x,
 //   c.y, j, slope, t_lo, t_hi, first, columns); 56-58 zirr D, 59 cells;
-//   60-62 grains D; 63-65 glint_term(model) L, 66 its cells; 67-69
+//   60-62 grains D; 63-65 glint_term of the model: L, 66 its cells; 67-69
 //   glint_radiance of D = 1.
 layout(local_size_x = 64) in;
 layout(std430, set = 0, binding = 0) readonly buffer Inputs { float inputs[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float outputs[]; };
 layout(push_constant) uniform Push { uint count; };
 
-#include "sand/glint_models.glsl"
+#include "tests/glint_twins.glsl"
 
 #define GLINT_IN 40u
 #define GLINT_OUT 72u
@@ -52,17 +52,19 @@ void main() {
   p.SSS = 0.0; p.R_s = 0.0; p.T = 0.0; p.R_t = 0.0; p.sigma_g = 1.0; p.P = 0.0; p.noise_scale = 1.0;
   p.scattering = 0.0; p.absorption = 0.0; p.sigma_on = 0.0; p.sig_a = 1.0; p.sig_b = 0.0;
   p.appendix_compat = 0u; p.fresnel_half_vector = 0u; p.energy_consistent = 0u;
-  p.glint_half_vector_blend = inputs[i + 36u]; p.glint_pad1 = 0.0;
+  p.glint_pad0 = 0.0; p.glint_pad1 = 0.0; p.glint_pad2 = 0.0; p.glint_pad3 = 0.0;
+  p.glint_parameters[0] = vec4(0.0); p.glint_parameters[1] = vec4(0.0);
+  twin_half_vector_blend = inputs[i + 36u];
   p.glint_alpha = vec4(in2(i + 24u), in2(i + 26u));
   p.glint_log_density = inputs[i + 28u];
-  p.glint_size_variation = inputs[i + 29u];
+  twin_size_variation = inputs[i + 29u];
   p.glint_intensity = inputs[i + 30u];
   p.glint_light_cone = inputs[i + 31u];
-  p.glint_color_saturation = inputs[i + 32u];
+  twin_color_saturation = inputs[i + 32u];
   p.ior = inputs[i + 33u];
   float sun_cone = inputs[i + 34u];
-  uint model = uint(inputs[i + 35u]);
-  p.glint_model = model;
+  twin_model = uint(inputs[i + 35u]);
+  p.glint_model = twin_model;
 
   GlintFrame f = glint_frame(t, b, n, wi, wo);
   out3(o + 0u, f.wi);
@@ -78,7 +80,7 @@ void main() {
   out2(o + 20u, r.h_cell);
   outputs[o + 22u] = r.s_ref;
   outputs[o + 23u] = r.cone;
-  outputs[o + 24u] = glint_beckmann_D(f, r);
+  outputs[o + 24u] = beckmann_D(f.h, vec2(0.0), r.alpha_g);
   outputs[o + 25u] = f.wi.z > 0.0 ? beckmann_lambda(f.wi, r.alpha_surface) : 0.0;
   outputs[o + 26u] = f.wo.z > 0.0 ? beckmann_z_lambda(f.wo, r.alpha_surface) : 0.0;
   outputs[o + 27u] = smith_G2(f.wi, f.wo, f.h, r.alpha_surface);
@@ -99,11 +101,11 @@ void main() {
   vec2 st_dx = glint_clamp_derivative(dx) * r.stretch, st_dy = glint_clamp_derivative(dy) * r.stretch;
   out_walk(o + 40u, glint_walk(st_uv, st_dx, st_dy, r.s_ref * exp2(float(fp.level0))));
   out_walk(o + 48u, glint_walk(st_uv, st_dx, st_dy, r.s_ref * exp2(float(fp.level1))));
-  GlintZirr z = glint_zirr(uv, dx, dy, f.h, r, p.glint_size_variation, p.glint_color_saturation);
+  GlintZirr z = glint_zirr(uv, dx, dy, f.h, r, twin_size_variation, twin_color_saturation, twin_half_vector_blend > 0.5);
   out3(o + 56u, z.D);
   outputs[o + 59u] = z.cells;
-  out3(o + 60u, glint_grains_D(uv, f.h, r, p.glint_color_saturation));
-  GlintTerm g = glint_term(model, p, uv, dx, dy, t, b, n, wi, wo, L_i, sun_cone);
+  out3(o + 60u, glint_grains_D(uv, f.h, r, twin_color_saturation));
+  GlintTerm g = glint_term(false, p, uv, dx, dy, t, b, n, wi, wo, L_i, sun_cone);
   out3(o + 63u, g.L);
   outputs[o + 66u] = g.cells;
   out3(o + 67u, glint_radiance(vec3(1.0), f, r, p.ior, vec3(1.0), 1.0));

@@ -13,6 +13,7 @@ layout(std430, set = 0, binding = 0) readonly buffer Inputs { float inputs[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float outputs[]; };
 layout(push_constant) uniform Push { uint count; };
 
+#include "tests/glint_twins.glsl"
 #include "sand/sand.glsl"
 
 #define SAND_IN_STRIDE 96u
@@ -57,17 +58,19 @@ void main() {
   p.sigma_on = inputs[i + 29u];
   p.sig_a = inputs[i + 30u];
   p.sig_b = inputs[i + 31u];
-  p.glint_half_vector_blend = 0.0; p.glint_pad1 = 0.0;
+  p.glint_pad0 = 0.0; p.glint_pad1 = 0.0; p.glint_pad2 = 0.0; p.glint_pad3 = 0.0;
+  p.glint_parameters[0] = vec4(0.0); p.glint_parameters[1] = vec4(0.0);
   p.energy_consistent = uint(inputs[i + 64u]);
   p.glint_alpha = vec4(in2(i + 65u), in2(i + 67u));
   p.glint_log_density = inputs[i + 69u];
-  p.glint_size_variation = inputs[i + 70u];
+  twin_size_variation = inputs[i + 70u];
   p.glint_intensity = inputs[i + 71u];
   p.glint_light_cone = inputs[i + 72u];
-  p.glint_color_saturation = inputs[i + 73u];
+  twin_color_saturation = inputs[i + 73u];
   p.appendix_compat = uint(inputs[i + 32u]);
   p.fresnel_half_vector = uint(inputs[i + 33u]);
   p.glint_model = uint(inputs[i + 34u]);
+  twin_model = p.glint_model;
   p.I_glints = vec4(in3(i + 35u), 0.0);
   for (uint k = 0u; k < 8u; ++k) p.palette[k] = vec4(in3(i + 40u + 3u * k), 1.0);
 

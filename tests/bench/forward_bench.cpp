@@ -377,7 +377,7 @@ int bench(int argc, char** argv) {
   no_t.T = 0;
   cases.push_back({"T = 0 (no transmission)", sand(no_t, 0.0, 1e30)});
   core::SandParams no_g = base;
-  no_g.glint_model = core::GlintModel::None;
+  no_g.glint_model = core::kGlintModelNone;
   cases.push_back({"no glints", sand(no_g, 0.0, 1e30)});
   // A transition pushed out to b = 100 is never reached within 20 units: the far branch compiles out.
   core::SandParams near_only = base;
@@ -385,7 +385,7 @@ int bench(int argc, char** argv) {
   cases.push_back({"close only (b = 100, dist <= 20)", sand(near_only, 0.0, 20.0)});
   cases.push_back({"far only (close never reached)", sand(base, 1e6, 1e30)});
   core::SandParams minimal = no_t;
-  minimal.glint_model = core::GlintModel::None;
+  minimal.glint_model = core::kGlintModelNone;
   cases.push_back({"far only, T = 0, no glints", sand(minimal, 1e6, 1e30)});
   // What culling the chunks the camera cannot see saves (the rows above cull).
   cases.push_back({"floor, every chunk drawn", core::geometry_only_program(), true, false, false});

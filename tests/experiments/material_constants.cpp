@@ -33,7 +33,7 @@ const char* kScene = R"({
 })";
 
 // Every parameter away from its default and from the others, so that two swapped fields show.
-core::SandParams distinct_params(core::GlintModel model, uint32_t compat, bool energy_consistent) {
+core::SandParams distinct_params(const std::string& model, uint32_t compat, bool energy_consistent) {
   core::SandParams p = core::SandParams::preset("thesis-hdri-match");
   for (int i = 0; i < 8; ++i) p.palette[i] = {0.2 + 0.09 * i, 0.7 - 0.05 * i, 0.3 + 0.04 * (i % 3)};
   p.SSS = 0.61;
@@ -57,11 +57,14 @@ core::SandParams distinct_params(core::GlintModel model, uint32_t compat, bool e
   p.glints.log_density = 6.3;
   p.glints.alpha_g = {0.21, 0.34};
   p.glints.relative_roughness = {0.12, 0.09};
-  p.glints.size_variation = 0.4;
+  auto own = [&p](const char* name, double v) {  // a model's own parameter, where it declares it
+    if (const core::GlintModelDecl* d = p.glint_decl(); d && d->parameter(name)) p.glints.model[name] = v;
+  };
+  own("size_variation", 0.4);
   p.glints.intensity = 2.5;
   p.glints.light_cone = 0.02;
-  p.glints.color_saturation = 0.6;
-  p.glints.half_vector_blend = true;
+  own("color_saturation", 0.6);
+  own("half_vector_blend", 1.0);
   return p;
 }
 
@@ -85,14 +88,13 @@ TEST(MaterialConstants, FoldedParametersRenderWhatTheUniformBlockRenders) {
   const core::SandFeatures needs = t.data.range;
 
   struct Case {
-    core::GlintModel model;
+    std::string model;
     uint32_t compat;
     bool energy;
   };
-  for (Case c : {Case{core::GlintModel::Kajs, 0u, false}, Case{core::GlintModel::Kajs, core::kSandCompatAll, true},
-                 Case{core::GlintModel::Grains, 0u, false}, Case{core::GlintModel::Zirr, 0u, true},
-                 Case{core::GlintModel::Beckmann, core::kSandCompatFresnelAbs, false}}) {
-    SCOPED_TRACE(std::string(enum_name(core::kGlintModelNames, c.model)) + " compat " + std::to_string(c.compat));
+  for (Case c : {Case{core::kGlintModelKajs, 0u, false}, Case{core::kGlintModelKajs, core::kSandCompatAll, true},
+                 Case{"grains", 0u, false}, Case{"zirr", 0u, true}, Case{"beckmann", core::kSandCompatFresnelAbs, false}}) {
+    SCOPED_TRACE(c.model + " compat " + std::to_string(c.compat));
     core::SurfacePassOptions folded;
     folded.program = core::sand_program(distinct_params(c.model, c.compat, c.energy), needs, core::ProgramRole::Variant);
     core::SurfacePassOptions from_block = folded;
@@ -147,4 +149,35 @@ TEST(MaterialConstants, FoldedLightingFollowsTheFrame) {
   EXPECT_EQ(differ_from_fresh, 0u);
   EXPECT_GT(surface, b.pixel_count() / 4);
   EXPECT_EQ(relit, surface) << "every surface pixel must show the second lighting";
+}
+
+// A user's model file that writes the smooth Beckmann NDF out inline
+// (tests/data/glint_models/beckmann_inline.glsl, gain k = 1) renders the
+// frame the built-in "beckmann" renders, bit for bit; with k = 2 the glints
+// change.
+TEST(MaterialConstants, UserModelFileRendersWhatTheBuiltInRenders) {
+  TestScene t;
+  test::ValidationGuard guard(t.ctx);
+  const core::FrameUniforms fu = frame_uniforms(t.spec, t.data, 0);
+  auto render = [&](const core::SandParams& p) {
+    core::SurfacePassOptions o;
+    o.program = core::sand_program(p, t.data.range, core::ProgramRole::Variant);
+    return core::SurfaceRenderer(t.ctx, t.scene, t.w, t.h, o).render(fu, t.one).images.at("color");
+  };
+  core::SandParams builtin = distinct_params("beckmann", 0u, true);
+  core::SandParams user = builtin;
+  const std::string file = std::string(GLINTLAB_TEST_DATA_DIR) + "/glint_models/beckmann_inline.glsl";
+  user.glint_model = file;
+  user.glint_file = std::make_shared<const core::GlintModelDecl>(core::glint_model_from_file(file));
+  const Image a = render(builtin), b = render(user);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < a.data.size(); ++i) differ += a.data[i] != b.data[i];
+  EXPECT_EQ(differ, 0u);
+  core::SandParams twice = user;
+  twice.glints.model["k"] = 2.0;
+  const Image c = render(twice);
+  size_t brighter = 0;
+  for (size_t i = 0; i < a.data.size(); ++i) brighter += c.data[i] > a.data[i];
+  EXPECT_GT(brighter, 0u);
 }

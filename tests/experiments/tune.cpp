@@ -2,6 +2,9 @@
 // journal-file storages, several workers under GNU parallel, a worker killed mid-trial, and a
 // one-node Slurm cluster (slurm-wlm + munge, configured here in a temporary folder) running the
 // job-array recipes (experiments/README.md) for `run --shard` + `merge` and for `tune`.
+#include "core/material/glint_model.h"
+#include "core/util/json_check.h"
+#include "experiments/tune/tune.h"
 #include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
 
@@ -125,6 +128,33 @@ TEST_F(Tune, BadSpaceIsAnErrorNamingTheKeyBeforeAnyTrial) {
   EXPECT_EQ(empty.code, 2) << empty.output;
   EXPECT_NE(empty.output.find("--objectives: an empty name"), std::string::npos) << empty.output;
   EXPECT_FALSE(fs::exists(study / "trials"));
+}
+
+// A glint model's own parameter given without a range is searched over its declared range (the
+// model's declaration, shaders/glint/models/); a key the base variant's model does not declare is refused.
+TEST(TuneSpace, AGlintModelParameterAloneSearchesItsDeclaredRange) {
+  nlohmann::json e = nlohmann::json::parse(kTiny);
+  e["variants"][1]["material"] = {{"glint_model", "zirr"}};
+  glintlab::TuneOptions o;
+  o.base = "taa";
+  o.objectives = {"deltaE2000"};
+  o.trials = 1;
+  o.space = {"material.glints.size_variation", "material.glints.half_vector_blend"};
+  const nlohmann::json d = glintlab::tune_definition(o, e, "tiny.json");
+  const glintlab::core::GlintParameter* sv = glintlab::core::find_builtin_glint_model("zirr")->parameter("size_variation");
+  ASSERT_NE(sv, nullptr);
+  EXPECT_EQ(d["space"][0]["kind"], "float");
+  EXPECT_EQ(d["space"][0]["lo"].get<double>(), sv->lo);
+  EXPECT_EQ(d["space"][0]["hi"].get<double>(), sv->hi);
+  EXPECT_EQ(d["space"][1]["kind"], "choice");
+  EXPECT_EQ(d["space"][1]["choices"], nlohmann::json::array({false, true}));
+  o.space = {"material.glints.k"};
+  try {
+    glintlab::tune_definition(o, e, "tiny.json");
+    ADD_FAILURE() << "accepted a parameter zirr does not declare";
+  } catch (const glintlab::ConfigError& err) {
+    EXPECT_NE(std::string(err.what()).find("zirr"), std::string::npos) << err.what();
+  }
 }
 
 TEST_F(Tune, TwoTrialsAreDeterministicWithAFixedSeedAndAnotherStudyIsRefused) {

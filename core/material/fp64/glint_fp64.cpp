@@ -23,17 +23,37 @@ vec3 open01(const sand::uvec3& h) {
 constexpr uint32_t kGrainsSalt = 0x6A09E667u, kOffsetSalt = 0x3C6EF372u, kHalfSalt = 0xA54FF53Au;
 }  // namespace
 
+const char* twin_name(uint32_t twin) {
+  return twin == kGlintGrains ? "grains" : twin == kGlintZirr ? "zirr" : twin == kGlintBeckmann ? "beckmann" : "";
+}
+
+uint32_t twin_of_gpu(uint32_t gpu_id) {
+  for (uint32_t t : {kGlintGrains, kGlintZirr, kGlintBeckmann})
+    if (core::find_builtin_glint_model(twin_name(t)) && core::glint_model_gpu_id(twin_name(t)) == gpu_id) return t;
+  return 0u;
+}
+
+uint32_t gpu_of_twin(uint32_t twin) { return core::glint_model_gpu_id(twin_name(twin)); }
+
 Params from_gpu(const core::SandParamsGPU& g) {
   Params p;
+  const auto& models = core::builtin_glint_models();
+  const core::GlintModelDecl* d = g.glint_model >= 2 && g.glint_model - 2 < models.size() ? &models[g.glint_model - 2] : nullptr;
+  auto param = [&](const char* name) {
+    if (d)
+      for (size_t i = 0; i < d->parameters.size(); ++i)
+        if (d->parameters[i].name == name) return double(g.glint_parameters[i]);
+    return 0.0;
+  };
   p.alpha_g = vec2(g.glint_alpha[0], g.glint_alpha[1]);
   p.relative = vec2(g.glint_alpha[2], g.glint_alpha[3]);
   p.log_density = g.glint_log_density;
-  p.size_variation = g.glint_size_variation;
+  p.size_variation = param("size_variation");
   p.intensity = g.glint_intensity;
   p.light_cone = g.glint_light_cone;
-  p.color_saturation = g.glint_color_saturation;
+  p.color_saturation = param("color_saturation");
   p.ior = g.ior;
-  p.half_vector_blend = g.glint_half_vector_blend > 0.5f;
+  p.half_vector_blend = param("half_vector_blend") > 0.5;
   return p;
 }
 

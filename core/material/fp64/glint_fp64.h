@@ -24,7 +24,13 @@ using vec2 = glm::dvec2;
 using vec3 = glm::dvec3;
 using uvec2 = std::array<uint32_t, 2>;
 
+// The twins of the built-in models (shaders/glint/models/<name>.glsl) have
+// the ids of this file; the GPU's SandParams.glint_model
+// (core::glint_model_gpu_id) maps to them by the model's name.
 constexpr uint32_t kGlintGrains = 2u, kGlintZirr = 3u, kGlintBeckmann = 4u;
+uint32_t twin_of_gpu(uint32_t gpu_id);  // 0: a model without a twin (or kajs, none)
+uint32_t gpu_of_twin(uint32_t twin);
+const char* twin_name(uint32_t twin);  // the built-in model's name; "" for no twin
 constexpr double kKa = 16.0;       // GLINT_K_A
 constexpr int kMaxLevel = 28;      // GLINT_MAX_LEVEL
 constexpr int kMaxColumns = 40;    // GLINT_MAX_COLUMNS
@@ -37,6 +43,7 @@ struct Params {
   double log_density, size_variation, intensity, light_cone, color_saturation, ior;
   bool half_vector_blend = false;  // zirr: the four nearest half-vector bins, bilinear (glints.half_vector_blend)
 };
+// The model's own parameters from the slots its declaration gives them (0 where it declares none).
 Params from_gpu(const core::SandParamsGPU& g);
 
 // Tracks the smallest slack of the discrete decisions of one evaluation:
@@ -53,7 +60,7 @@ double safe_log1p(double x);                 // log1p; -3.4e38 for x <= -1 or Na
 uint32_t wrapped_floor(double x);            // floor(x) mod 2^32 (x an fp32 value)
 double normal_quantile(double u);            // Phi^-1(u), u clamped to [2^-25, 1 - 2^-25]
 
-// ---- sand/binomial.glsl
+// ---- common/binomial.glsl
 double binomial_tail(double i, double n, double q, double u, double F_i);
 // Same algorithm (regimes, recurrence, Cornish-Fisher terms) in double.
 // n_rel_err: relative error of the caller's n in fp32 (0: n is an exact input),
@@ -105,7 +112,7 @@ struct Cell {
 Cell walk_cell(const Walk& w, int column, int row, Slack* slack = nullptr);
 uvec2 coherent_seed(uvec2 cell, int level);
 
-// ---- the models (sand/glints_*.glsl)
+// ---- the models (glint/models/*.glsl)
 struct Frame {
   vec3 wi, wo, h;
   bool valid;

@@ -20,6 +20,12 @@ std::vector<float> run_chunked(core::VkContext& ctx, const std::string& shader, 
   return out;
 }
 
+std::vector<std::string> twin_defines() {
+  return {"GLINT_TWIN_GRAINS=" + std::to_string(glint::gpu_of_twin(glint::kGlintGrains)) + "u",
+          "GLINT_TWIN_ZIRR=" + std::to_string(glint::gpu_of_twin(glint::kGlintZirr)) + "u",
+          "GLINT_TWIN_BECKMANN=" + std::to_string(glint::gpu_of_twin(glint::kGlintBeckmann)) + "u"};
+}
+
 void write_sand_terms_input(const SandTermsInput& c, float* in) {
   auto put3 = [&](size_t o, const std::array<float, 3>& v) {
     for (int i = 0; i < 3; ++i) in[o + i] = v[i];
@@ -44,10 +50,11 @@ void write_sand_terms_input(const SandTermsInput& c, float* in) {
   in[64] = float(p.energy_consistent);
   for (int i = 0; i < 4; ++i) in[65 + i] = p.glint_alpha[i];
   in[69] = p.glint_log_density;
-  in[70] = p.glint_size_variation;
+  const glint::Params gp = glint::from_gpu(p);  // the model's own parameters, by its declaration
+  in[70] = f32(gp.size_variation);
   in[71] = p.glint_intensity;
   in[72] = p.glint_light_cone;
-  in[73] = p.glint_color_saturation;
+  in[73] = f32(gp.color_saturation);
   put3(74, c.t);
   put3(77, c.b);
   for (int i = 0; i < 2; ++i) in[80 + i] = c.uv[i], in[82 + i] = c.duv_dx[i], in[84 + i] = c.duv_dy[i];
@@ -96,10 +103,10 @@ std::vector<float> run_glint_terms(core::VkContext& ctx, const std::vector<Glint
     r[32] = f32(c.p.color_saturation);
     r[33] = f32(c.p.ior);
     r[34] = f32(c.sun_cone);
-    r[35] = float(c.model);
+    r[35] = float(glint::gpu_of_twin(c.model));
     r[36] = c.p.half_vector_blend ? 1.0f : 0.0f;
   }
-  return run_chunked(ctx, "tests/glint_terms.comp", {}, in, kGlintTermsIn, kGlintTermsOut, cases.size());
+  return run_chunked(ctx, "tests/glint_terms.comp", twin_defines(), in, kGlintTermsIn, kGlintTermsOut, cases.size());
 }
 
 glint::Roughness gpu_roughness(const float* o, const GlintTermsInput& c) {

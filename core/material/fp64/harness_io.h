@@ -25,6 +25,10 @@ inline glint::vec3 d3(const std::array<float, 3>& v) { return glint::vec3(v[0], 
 std::vector<float> run_chunked(core::VkContext& ctx, const std::string& shader, const std::vector<std::string>& defines,
                                const std::vector<float>& in, size_t in_stride, size_t out_stride, size_t items);
 
+// The defines shaders/tests/glint_twins.glsl needs: GLINT_TWIN_<NAME> = the
+// SandParams.glint_model id of each built-in model with an fp64 twin.
+std::vector<std::string> twin_defines();
+
 // ---- shaders/tests/sand_terms.comp: one shading point of the sand material
 constexpr size_t kSandTermsIn = 96, kSandTermsOut = 76;
 struct SandTermsInput {

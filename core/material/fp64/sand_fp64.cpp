@@ -35,7 +35,7 @@ Params from_gpu(const core::SandParamsGPU& g) {
   p.sig_b = g.sig_b;
   p.appendix_compat = g.appendix_compat;
   p.fresnel_half_vector = g.fresnel_half_vector;
-  p.glint_model = g.glint_model;
+  p.glint_model = g.glint_model <= kGlintKajs ? g.glint_model : glint::twin_of_gpu(g.glint_model);
   p.energy_consistent = g.energy_consistent;
   p.gpu = g;
   return p;
@@ -320,7 +320,7 @@ Terms sand_terms(const Params& p, const Surface& s, const Light& l, const Featur
   if (ft.far) {
     r.L_oren = L_oren(s.n, l.wi, s.wo, p.sigma_on, compat);
     r.L_brdf = L_brdf(r.rho_n, r.f_s, r.f_e, r.L_oren, cos_ni, l.L_i, L_sky_diffuse, 1.0 - r.f, r.T_ext);
-    if (model == kGlintGrains || model == kGlintZirr || model == kGlintBeckmann) r.L_g_far = glint(kGlintBeckmann, nullptr).L;
+    if (model != kGlintKajs && model != kGlintNone) r.L_g_far = glint(glint::kGlintBeckmann, nullptr).L;
     r.L_far = L_far(r.L_brdf, r.L_f + r.L_g_far, r.L_t, r.rho_n_intensity);
   }
   r.sig = (ft.close && ft.far) ? sig(s.dist, p.sig_a, p.sig_b) : (ft.far ? 1.0 : 0.0);

@@ -25,7 +25,7 @@ using uvec3 = std::array<uint32_t, 3>;
 constexpr uint32_t kCompatRandNormalized = 1u, kCompatIntensityXi1 = 2u, kCompatGateXi1 = 4u, kCompatGlintSky = 8u,
                    kCompatFresnelAbs = 16u, kCompatOrenNayarWorld = 32u;
 constexpr uint32_t kFresnelMacroNormal = 0u, kFresnelLightView = 1u;
-constexpr uint32_t kGlintNone = 0u, kGlintKajs = 1u, kGlintGrains = 2u, kGlintZirr = 3u, kGlintBeckmann = 4u;
+constexpr uint32_t kGlintNone = 0u, kGlintKajs = 1u;  // Params::glint_model, else a twin id (glint_fp64.h)
 
 struct Params {
   std::array<vec3, 8> palette;

@@ -1,33 +1,145 @@
-// Every glint model in the C++ name table has the GLSL constant with the same
-// value, so a model added on one side only cannot pack as another.
+// The glint model registry (core/material/glint_model.h): the built-in
+// models are the files of shaders/glint/models/, each declared in its own
+// comment lines; their GPU ids agree with the GLSL; declarations are
+// validated naming file and line; and no second list of model names exists
+// in the product's sources.
 #include "core/material/glint_model.h"
 #include "core/material/sand_material.h"
+#include "core/util/json_check.h"
 #include "core/vk/compute_harness.h"
 #include "tests/support/vk_test_util.h"
 
 #include <gtest/gtest.h>
 
-#include <cctype>
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 
 using namespace glintlab;
+namespace fs = std::filesystem;
 
-TEST(GlintModel, EveryNamedModelHasItsGlslConstant) {
-  auto& ctx = test::shared_context();
-  test::ValidationGuard guard(ctx);
-  for (const auto& [model, name] : core::kGlintModelNames) {
-    std::string upper = name;
-    for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
-    std::vector<float> out = core::run_compute(ctx, "tests/constant.comp", {"CONSTANT=SAND_GLINT_" + upper}, {}, 1, 1);
-    EXPECT_EQ(out[0], float(uint32_t(model))) << name;
+TEST(GlintModel, BuiltInModelsAreTheFilesOfTheModelFolder) {
+  std::set<std::string> files;
+  for (const auto& e : fs::directory_iterator(fs::path(GLINTLAB_SHADER_DIR) / "glint" / "models"))
+    if (e.path().extension() == ".glsl") files.insert(e.path().stem().string());
+  std::set<std::string> registered;
+  for (const auto& m : core::builtin_glint_models()) {
+    registered.insert(m.name);
+    EXPECT_TRUE(m.builtin);
+    EXPECT_EQ(m.file, "glint/models/" + m.name + ".glsl");
+    EXPECT_FALSE(m.checks.empty()) << m.name;
+    EXPECT_EQ(m.content_hash.size(), 32u) << m.name;
   }
+  EXPECT_EQ(registered, files);
+  auto names = core::glint_model_names();
+  EXPECT_EQ(names.front(), "kajs");
+  EXPECT_EQ(names.back(), "none");
+  EXPECT_EQ(names.size(), files.size() + 2);
 }
 
-TEST(GlintModel, NamesRoundTripAndUnknownNamesAreRejected) {
-  for (const auto& [model, name] : core::kGlintModelNames) {
-    EXPECT_EQ(enum_from_name(core::kGlintModelNames, name), model);
-    core::SandParams p;
-    p.glint_model = model;
-    EXPECT_EQ(p.pack().glint_model, uint32_t(model)) << name;
+TEST(GlintModel, GpuIdsAgreeWithTheGlslConstants) {
+  auto& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  for (const char* name : {"KAJS", "NONE"}) {
+    std::vector<float> out = core::run_compute(ctx, "tests/constant.comp", {std::string("CONSTANT=SAND_GLINT_") + name}, {}, 1, 1);
+    EXPECT_EQ(out[0], float(core::glint_model_gpu_id(name[0] == 'K' ? "kajs" : "none"))) << name;
   }
-  EXPECT_FALSE(enum_from_name(core::kGlintModelNames, "kajs2"));
+  std::set<uint32_t> ids;
+  for (const auto& name : core::glint_model_names()) {
+    core::SandParams p;
+    p.glint_model = name;
+    EXPECT_EQ(p.pack().glint_model, core::glint_model_gpu_id(name)) << name;
+    ids.insert(core::glint_model_gpu_id(name));
+  }
+  EXPECT_EQ(ids.size(), core::glint_model_names().size());  // distinct
+}
+
+TEST(GlintModel, DeclarationsAreParsedAndMalformedOnesNamed) {
+  auto d = core::parse_glint_model("m", "m.glsl",
+                                   "// a model\n"
+                                   "// glint_model truth=grains limit=beckmann checks=finite,unbiased\n"
+                                   "// glint_parameter k default=2 range=0,4\n"
+                                   "// glint_parameter on default=true type=bool\n"
+                                   "vec3 glint_D(GlintQuery q) { return vec3(q.k); }\n");
+  EXPECT_EQ(d.truth, "grains");
+  EXPECT_EQ(d.checks, (std::vector<std::string>{"finite", "unbiased"}));
+  ASSERT_EQ(d.parameters.size(), 2u);
+  EXPECT_EQ(d.parameters[0].name, "k");
+  EXPECT_EQ(d.parameters[0].def, 2.0);
+  EXPECT_EQ(d.parameters[0].hi, 4.0);
+  EXPECT_TRUE(d.parameters[1].is_bool);
+  EXPECT_EQ(d.parameters[1].def, 1.0);
+  // the smooth limit GGX: the far field and the checks use GGX with alpha_g
+  auto g = core::parse_glint_model("g", "g.glsl", "// glint_model limit=ggx\n");
+  EXPECT_EQ(g.limit, "ggx");
+  EXPECT_EQ(g.truth, "self");
+  g.file = "g.glsl";
+  auto defs = core::glint_model_defines(g);
+  EXPECT_NE(std::find(defs.begin(), defs.end(), "GLINT_LIMIT_GGX"), defs.end());
+  defs = core::glint_model_defines(d);
+  EXPECT_EQ(std::find(defs.begin(), defs.end(), "GLINT_LIMIT_GGX"), defs.end());
+  auto expect_error = [](const std::string& text, const std::string& must_contain) {
+    try {
+      core::parse_glint_model("m", "m.glsl", text);
+      ADD_FAILURE() << "accepted " << text;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(must_contain), std::string::npos) << e.what();
+    }
+  };
+  const std::string head = "// glint_model truth=self\n";
+  expect_error("vec3 glint_D(GlintQuery q) { return vec3(0.0); }\n", "m.glsl: no glint_model declaration");
+  expect_error("// glint_model truth=self checks=finite,fast\n", "m.glsl:1: unknown check \"fast\"");
+  expect_error("// glint_model limit=phong\n", "m.glsl:1: unknown or empty field \"limit=phong\"");
+  expect_error(head + "// glint_parameter k default=5 range=0,4\n", "m.glsl:2: default of k");
+  expect_error(head + "// glint_parameter k default=1\n", "m.glsl:2: parameter k has no range");
+  expect_error(head + "// glint_parameter k range=0,1\n", "m.glsl:2: parameter k has no default");
+  expect_error(head + "// glint_parameter 2k default=1 range=0,1\n", "m.glsl:2: a parameter needs a GLSL identifier");
+  expect_error(head + "// glint_parameter k default=1 range=1,0\n", "m.glsl:2: range of k");
+  expect_error(head + "// glint_parameter b default=yes type=bool\n", "m.glsl:2: default of bool b");
+  expect_error(head + "// glint_parameter k default=1 range=0,1\n// glint_parameter k default=1 range=0,1\n",
+               "m.glsl:3: parameter k declared twice");
+}
+
+// Adding a built-in model is adding its file: no source of the product lists
+// the built-in models' names (a list would be a second place to add one). The
+// fp64 twins (core/material/fp64/) and the harnesses that compare them
+// (shaders/tests/) implement particular built-in models and name them; tests
+// and experiment files use models by name.
+TEST(GlintModel, NoSecondListOfModelNames) {
+  std::vector<std::string> names;
+  for (const auto& m : core::builtin_glint_models()) names.push_back(m.name);
+  ASSERT_GE(names.size(), 2u);
+  const fs::path root = fs::path(GLINTLAB_SHADER_DIR).parent_path();
+  const std::set<std::string> exts = {".cpp", ".h", ".glsl", ".comp", ".frag", ".vert", ".py"};
+  const std::vector<fs::path> exempt = {root / "shaders" / "glint" / "models", root / "shaders" / "tests",
+                                        root / "core" / "material" / "fp64"};
+  size_t scanned = 0;
+  for (const char* top : {"core", "experiments", "shaders", "metrics"}) {
+    for (const auto& e : fs::recursive_directory_iterator(root / top)) {
+      if (!e.is_regular_file() || !exts.count(e.path().extension().string())) continue;
+      bool skip = false;
+      for (const auto& x : exempt) skip = skip || e.path().string().rfind(x.string(), 0) == 0;
+      if (skip) continue;
+      ++scanned;
+      std::ifstream in(e.path());
+      std::stringstream ss;
+      ss << in.rdbuf();
+      const std::string text = ss.str();
+      std::vector<std::string> found;
+      for (const auto& n : names) {
+        std::string upper = n;
+        for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
+        std::string cap = n;
+        cap[0] = char(std::toupper(static_cast<unsigned char>(cap[0])));
+        // as a string, a GLSL constant or an enum value
+        std::regex pat("[\"']" + n + "[\"']|SAND_GLINT_" + upper + "\\b|GlintModel::" + cap + "\\b");
+        if (std::regex_search(text, pat)) found.push_back(n);
+      }
+      EXPECT_LT(found.size(), 2u) << e.path() << " names the models " << ::testing::PrintToString(found);
+    }
+  }
+  EXPECT_GT(scanned, 100u);
 }

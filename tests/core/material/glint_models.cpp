@@ -1,5 +1,5 @@
 // The microdetail glint models of Zirr & Kaplanyan 2016 (shaders/sand/
-// glint_*.glsl, glints_*.glsl, binomial.glsl, common/beckmann.glsl):
+// glint_*.glsl, glint/models/*.glsl, common/binomial.glsl, common/beckmann.glsl):
 // parameters, properties of the fp64 twin (tests/core/material/reference/
 // glint_reference), the GLSL against the twin on random and extreme inputs,
 // the binomial sampler against the binomial distribution, the footprint on
@@ -71,6 +71,11 @@ void expect_checks(std::map<std::string, TermCheck>& checks, size_t min_compared
 using reference::harness::f32;
 using reference::harness::run_chunked;
 
+std::vector<std::string> with_twins(std::vector<std::string> defines) {
+  for (auto& t : reference::harness::twin_defines()) defines.push_back(t);
+  return defines;
+}
+
 uint32_t uint_from_halves(float hi, float lo) { return (uint32_t(hi) << 16) | uint32_t(lo); }
 
 }  // namespace
@@ -82,14 +87,17 @@ TEST(GlintParams, DefaultsJsonAndRangeErrors) {
   EXPECT_EQ(d.glints.log_density, 7.0);
   EXPECT_EQ(d.glints.alpha_g, (std::array<double, 2>{0.3, 0.3}));
   EXPECT_EQ(d.glints.relative_roughness, (std::array<double, 2>{0.1, 0.1}));
-  EXPECT_EQ(d.glints.size_variation, 0.0);
   EXPECT_EQ(d.glints.intensity, 1.0);
   EXPECT_FALSE(d.glints.light_cone.has_value());
-  EXPECT_EQ(d.glints.color_saturation, 0.0);
-  EXPECT_FALSE(d.glints.half_vector_blend);  // Listing 1's hard bins
-  EXPECT_EQ(d.pack().glint_half_vector_blend, 0.0f);
+  EXPECT_TRUE(d.glints.model.empty());
   EXPECT_FALSE(d.energy_consistent);
-  EXPECT_EQ(d.glint_model, core::GlintModel::Kajs);  // the thesis stays the default
+  EXPECT_EQ(d.glint_model, "kajs");  // the thesis stays the default
+  core::SandParams z;
+  z.glint_model = "zirr";  // its declared defaults: white, no size variation, Listing 1's hard bins
+  EXPECT_EQ(z.glint_parameter("size_variation"), 0.0);
+  EXPECT_EQ(z.glint_parameter("color_saturation"), 0.0);
+  EXPECT_EQ(z.glint_parameter("half_vector_blend"), 0.0);
+  EXPECT_THROW(z.glint_parameter("k"), ConfigError);
 
   nlohmann::json j = {{"glint_model", "zirr"},
                       {"energy_consistent", true},
@@ -104,22 +112,27 @@ TEST(GlintParams, DefaultsJsonAndRangeErrors) {
                         {"half_vector_blend", true}}}};
   JsonReader r(j, "exp.json", "material");
   auto p = core::SandParams::from_json(r);
-  EXPECT_EQ(p.glint_model, core::GlintModel::Zirr);
+  EXPECT_EQ(p.glint_model, "zirr");
   EXPECT_TRUE(p.energy_consistent);
   EXPECT_EQ(p.glints.alpha_g[1], 0.4);
   EXPECT_EQ(p.glints.relative_roughness[0], 1.0);
   EXPECT_EQ(*p.glints.light_cone, 0.01);
   auto g = p.pack();
-  EXPECT_EQ(g.glint_model, 3u);
+  EXPECT_EQ(g.glint_model, core::glint_model_gpu_id("zirr"));
+  EXPECT_GE(g.glint_model, 2u);
   EXPECT_EQ(g.energy_consistent, 1u);
   EXPECT_FLOAT_EQ(g.glint_alpha[0], 0.2f);
   EXPECT_FLOAT_EQ(g.glint_alpha[3], 0.05f);
   EXPECT_FLOAT_EQ(g.glint_log_density, 8.5f);
-  EXPECT_FLOAT_EQ(g.glint_size_variation, 0.5f);
   EXPECT_FLOAT_EQ(g.glint_intensity, 3.0f);
   EXPECT_FLOAT_EQ(g.glint_light_cone, 0.01f);
-  EXPECT_FLOAT_EQ(g.glint_color_saturation, 0.7f);
-  EXPECT_EQ(g.glint_half_vector_blend, 1.0f);
+  // the model's parameters in the slots of its declaration order
+  const core::GlintModelDecl* zd = p.glint_decl();
+  ASSERT_NE(zd, nullptr);
+  for (size_t i = 0; i < zd->parameters.size(); ++i) {
+    const std::string& n = zd->parameters[i].name;
+    EXPECT_FLOAT_EQ(g.glint_parameters[i], n == "size_variation" ? 0.5f : n == "color_saturation" ? 0.7f : 1.0f) << n;
+  }
   EXPECT_EQ(core::SandParams().pack().glint_light_cone, -1.0f);  // "sun"
   nlohmann::json sun = {{"glints", {{"light_cone", "sun"}}}};
   JsonReader rs(sun, "exp.json", "material");
@@ -139,21 +152,32 @@ TEST(GlintParams, DefaultsJsonAndRangeErrors) {
   expect_error({{"glints", {{"alpha_g", {0.3, 0.0}}}}}, {"material.glints.alpha_g", "0.001"});
   expect_error({{"glints", {{"alpha_g", 0.3}}}}, {"material.glints.alpha_g"});
   expect_error({{"glints", {{"relative_roughness", {0.5, 1.5}}}}}, {"material.glints.relative_roughness"});
-  expect_error({{"glints", {{"size_variation", -1}}}}, {"material.glints.size_variation"});
+  expect_error({{"glint_model", "zirr"}, {"glints", {{"size_variation", -1}}}}, {"material.glints.size_variation"});
+  // a parameter of another model is an unknown key, naming the model's own
+  expect_error({{"glint_model", "grains"}, {"glints", {{"size_variation", 1}}}},
+               {"material.glints.size_variation", "unknown key", "color_saturation"});
   expect_error({{"glints", {{"intensity", 1e7}}}}, {"material.glints.intensity"});
   expect_error({{"glints", {{"light_cone", 1.0}}}}, {"material.glints.light_cone", "sun"});
   expect_error({{"glints", {{"light_cone", "moon"}}}}, {"material.glints.light_cone"});
-  expect_error({{"glints", {{"color_saturation", 2}}}}, {"material.glints.color_saturation"});
+  expect_error({{"glint_model", "grains"}, {"glints", {{"color_saturation", 2}}}}, {"material.glints.color_saturation"});
   expect_error({{"glints", {{"density", 7}}}}, {"density"});  // unknown key
   expect_error({{"glint_model", "zirr2"}}, {"glint_model", "zirr", "grains", "beckmann"});
   expect_error({{"energy_consistent", 1}}, {"energy_consistent"});
-  expect_error({{"glints", {{"half_vector_blend", "yes"}}}}, {"material.glints.half_vector_blend"});
+  expect_error({{"glint_model", "zirr"}, {"glints", {{"half_vector_blend", "yes"}}}}, {"material.glints.half_vector_blend"});
   core::SandParams bad;
   bad.glints.alpha_g[1] = 2.0;
   EXPECT_THROW(bad.validate(), ConfigError);
   bad = {};
   bad.glints.light_cone = -0.1;
   EXPECT_THROW(bad.pack(), ConfigError);
+  bad = {};
+  bad.glint_model = "grains";
+  bad.glints.model["size_variation"] = 0.5;  // not declared by grains
+  EXPECT_THROW(bad.validate(), ConfigError);
+  bad.glint_model = "zirr";
+  EXPECT_NO_THROW(bad.validate());
+  bad.glints.model["half_vector_blend"] = 0.5;  // a bool
+  EXPECT_THROW(bad.validate(), ConfigError);
 }
 
 TEST(GlintParams, DefinesReferenceAndDebugOutputs) {
@@ -161,9 +185,16 @@ TEST(GlintParams, DefinesReferenceAndDebugOutputs) {
     return std::find(d.begin(), d.end(), x) != d.end();
   };
   core::SandParams p;
-  p.glint_model = core::GlintModel::Zirr;
+  p.glint_model = "zirr";
   auto d = core::shader_defines(p, {});
-  EXPECT_TRUE(has(d, "SAND_GLINTS=1") && has(d, "SAND_GLINT_MODEL=3"));
+  const std::string zirr_id = std::to_string(core::glint_model_gpu_id("zirr"));
+  EXPECT_TRUE(has(d, "SAND_GLINTS=1") && has(d, "SAND_GLINT_MODEL=" + zirr_id));
+  // the model's file and its parameters as query fields read from their slots
+  EXPECT_TRUE(has(d, "GLINT_MODEL_INCLUDE") && has(d, "include:GLINT_MODEL_FILE=glint/models/zirr.glsl"));
+  EXPECT_TRUE(has(d, "GLINT_MODEL_HASH=h" + core::find_builtin_glint_model("zirr")->content_hash));
+  EXPECT_TRUE(std::any_of(d.begin(), d.end(), [](const std::string& x) {
+    return x.rfind("GLINT_MODEL_PARAMETERS=", 0) == 0 && x.find("float size_variation;") != std::string::npos;
+  }));
   p.I_glints = {0, 0, 0};  // the kajs gain does not prune the other models
   EXPECT_TRUE(has(core::shader_defines(p, {}), "SAND_GLINTS=1"));
   p.glints.intensity = 0;
@@ -172,22 +203,27 @@ TEST(GlintParams, DefinesReferenceAndDebugOutputs) {
   core::SandParams q;
   q.sigmoid_b = 10;
   EXPECT_TRUE(has(core::shader_defines(q, {14.7, 1e9}), "SAND_GLINTS=0"));
-  q.glint_model = core::GlintModel::Beckmann;
+  q.glint_model = "beckmann";
   auto far = core::shader_defines(q, {14.7, 1e9});
-  EXPECT_TRUE(has(far, "SAND_CLOSE=0") && has(far, "SAND_GLINTS=1") && has(far, "SAND_GLINT_MODEL=4"));
-  // the truth of zirr is grains; every other model is its own truth
-  for (const auto& [m, name] : core::kGlintModelNames) {
+  EXPECT_TRUE(has(far, "SAND_CLOSE=0") && has(far, "SAND_GLINTS=1") &&
+              has(far, "SAND_GLINT_MODEL=" + std::to_string(core::glint_model_gpu_id("beckmann"))));
+  // the truth of a model is what its declaration says (zirr: grains), with the parameters the truth declares
+  for (const auto& name : core::glint_model_names()) {
     core::SandParams s;
-    s.glint_model = m;
-    EXPECT_EQ(s.reference().glint_model, m == core::GlintModel::Zirr ? core::GlintModel::Grains : m) << name;
+    s.glint_model = name;
+    const core::GlintModelDecl* decl = s.glint_decl();
+    EXPECT_EQ(s.reference().glint_model, decl && decl->truth != "self" ? decl->truth : name) << name;
   }
+  EXPECT_EQ(core::find_builtin_glint_model("zirr")->truth, "grains");
   // zirr with and without blended half-vector bins share one truth
   core::SandParams zb;
-  zb.glint_model = core::GlintModel::Zirr;
-  zb.glints.half_vector_blend = true;
+  zb.glint_model = "zirr";
+  zb.glints.model["half_vector_blend"] = 1.0;
+  zb.glints.model["color_saturation"] = 0.5;
   core::SandParams zh = zb;
-  zh.glints.half_vector_blend = false;
-  EXPECT_EQ(zb.reference().pack().glint_half_vector_blend, 0.0f);
+  zh.glints.model["half_vector_blend"] = 0.0;
+  EXPECT_EQ(zb.reference().glint_model, "grains");
+  EXPECT_EQ(zb.reference().glint_parameter("color_saturation"), 0.5);  // kept: grains declares it
   const core::SandParamsGPU gb = zb.reference().pack(), gh = zh.reference().pack();
   EXPECT_EQ(std::memcmp(&gb, &gh, sizeof gb), 0);
   EXPECT_EQ(core::SandParams::debug_output_define("glint_cells"), 10);
@@ -1105,7 +1141,7 @@ LimitResult run_limit(core::VkContext& ctx, const LimitConfig& cfg, vec3 wi, vec
     r[20] = 1.458f;
     r[21] = cfg.half_vector_blend ? 1.0f : 0.0f;
   }
-  auto out = run_chunked(ctx, "tests/glint_limit.comp", {"GRID=" + std::to_string(grid)}, in, 24, 12, pixels);
+  auto out = run_chunked(ctx, "tests/glint_limit.comp", with_twins({"GRID=" + std::to_string(grid)}), in, 24, 12, pixels);
   LimitResult res;
   vec3 z2(0), g2(0);
   for (size_t i = 0; i < pixels; ++i) {

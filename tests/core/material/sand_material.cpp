@@ -124,7 +124,7 @@ TEST(SandParams, ShaderDefinesPruneWhatARunDoesNotNeed) {
               has(all, "SAND_FAR=1") && has(all, "SAND_DEBUG=0"));
   p.T = 0;
   EXPECT_TRUE(has(core::shader_defines(p, {}), "SAND_TRANSMISSION=0"));
-  p.glint_model = core::GlintModel::None;
+  p.glint_model = core::kGlintModelNone;
   EXPECT_TRUE(has(core::shader_defines(p, {}), "SAND_GLINTS=0"));
   // sig(x) = 1/(1+exp(-2(x-1.3))) < 1e-4 for x < 1.3 - ln(9999)/2 = -3.305: never for x >= 0,
   // so make b larger: b = 10 -> far unreachable below 10 - 4.605 = 5.395.
@@ -372,20 +372,22 @@ std::vector<Case> make_cases(size_t n_random, uint64_t seed) {
     sp.sigmoid_b = 20 * U(rng);
     sp.appendix_compat = U(rng) < 0.5 ? 0u : uint32_t(rng() % 64);
     sp.fresnel_half_vector = U(rng) < 0.5 ? "macro_normal" : "light_view";
-    sp.glint_model = U(rng) < 0.9 ? core::GlintModel::Kajs : core::GlintModel::None;
+    sp.glint_model = U(rng) < 0.9 ? core::kGlintModelKajs : core::kGlintModelNone;
     // 40 % of the kajs items use grains, zirr or beckmann; half of all items are energy consistent
-    if (sp.glint_model == core::GlintModel::Kajs && U(rng2) < 0.4)
-      sp.glint_model = std::vector<core::GlintModel>{core::GlintModel::Grains, core::GlintModel::Zirr,
-                                                     core::GlintModel::Beckmann}[rng2() % 3];
+    if (sp.glint_model == core::kGlintModelKajs && U(rng2) < 0.4)
+      sp.glint_model = std::vector<std::string>{"grains", "zirr", "beckmann"}[rng2() % 3];
+    auto own = [&sp](const char* name, double v) {  // a model's own parameter, where it declares it
+      if (const core::GlintModelDecl* d = sp.glint_decl(); d && d->parameter(name)) sp.glints.model[name] = v;
+    };
     sp.energy_consistent = U(rng2) < 0.5;
     auto logu2 = [&](double lo, double hi) { return std::exp(std::log(lo) + U(rng2) * (std::log(hi) - std::log(lo))); };
     sp.glints.alpha_g = {logu2(0.05, 1), logu2(0.05, 1)};
     sp.glints.relative_roughness = {logu2(0.05, 1), logu2(0.05, 1)};
     sp.glints.log_density = 14 * U(rng2);
-    sp.glints.size_variation = U(rng2) < 0.5 ? 0.0 : 2 * U(rng2);
+    own("size_variation", U(rng2) < 0.5 ? 0.0 : 2 * U(rng2));
     sp.glints.intensity = logu2(0.1, 100);
     if (U(rng2) < 0.5) sp.glints.light_cone = 0.5 * U(rng2);
-    sp.glints.color_saturation = U(rng2) < 0.5 ? 0.0 : U(rng2);
+    own("color_saturation", U(rng2) < 0.5 ? 0.0 : U(rng2));
     Case c;
     c.p = sp.pack();
     c.cone = float(0.01 * U(rng2));
@@ -431,7 +433,9 @@ ref::Terms ref_terms(const Case& c, const ref::Features& ft = {}) { return refer
 std::vector<float> run(core::VkContext& ctx, const std::vector<Case>& cases, const std::vector<std::string>& defines) {
   std::vector<float> in(cases.size() * kIn, 0.0f);
   for (size_t i = 0; i < cases.size(); ++i) reference::harness::write_sand_terms_input(cases[i], &in[i * kIn]);
-  return core::run_compute(ctx, "tests/sand_terms.comp", defines, in, cases.size() * kOut, uint32_t(cases.size()));
+  std::vector<std::string> d = defines;
+  for (auto& t : reference::harness::twin_defines()) d.push_back(t);
+  return core::run_compute(ctx, "tests/sand_terms.comp", d, in, cases.size() * kOut, uint32_t(cases.size()));
 }
 
 // Error statistics of one term: |gpu - ref| <= rel |ref| + abs_floor must hold.
@@ -559,9 +563,9 @@ TEST(SandGpu, EveryTermMatchesFp64OnRandomAndExtremeInputs) {
     // compared where rel_b < 1e-2. grains and zirr decide per cell on fp32 h and are
     // compared stage by stage in glint_models.cpp: here their GPU L_g is substituted into
     // the sums, which checks the wiring.
-    const uint32_t model = c.p.glint_model;
-    const bool micro = model == ref::kGlintGrains || model == ref::kGlintZirr;
-    const bool lobe_model = micro || model == ref::kGlintBeckmann;
+    const uint32_t model = reference::glint::twin_of_gpu(c.p.glint_model);
+    const bool micro = model == reference::glint::kGlintGrains || model == reference::glint::kGlintZirr;
+    const bool lobe_model = micro || model == reference::glint::kGlintBeckmann;
     double rel_b = 1.0;
     if (lobe_model) {
       namespace gr = glintlab::reference::glint;
@@ -596,14 +600,14 @@ TEST(SandGpu, EveryTermMatchesFp64OnRandomAndExtremeInputs) {
     vec3 L_g_gpu(o[33], o[34], o[35]);
     double floor_new = 0;  // the new models' L_g error in the sums
     vec3 L_g_sub = r.L_g;
-    if (model == ref::kGlintBeckmann && lobe_ok) {
+    if (model == reference::glint::kGlintBeckmann && lobe_ok) {
       chk3("L_g (beckmann)", 33, r.L_g, rel_b, 1e-30);
       floor_new = rel_b * std::max({r.L_g.x, r.L_g.y, r.L_g.z});
     }
     if (micro) {
       L_g_sub = L_g_gpu;
       floor_new = 1e-6 * std::max({L_g_gpu.x, L_g_gpu.y, L_g_gpu.z});
-      if (model == ref::kGlintZirr && r.glint_slack > 0 && r.glint_cells > 0 && o[67] > 0) {
+      if (model == reference::glint::kGlintZirr && r.glint_slack > 0 && r.glint_cells > 0 && o[67] > 0) {
         ++cells_compared;
         if (o[67] != r.glint_cells) ++cells_mismatch;
       }
@@ -692,8 +696,7 @@ TEST(SandGpu, PrunedAndDebugVariantsAgree) {
     const size_t o = i * kOut;
     glinting += f[33] > 0;
     counting += f[67] > 0;
-    const uint32_t model = cases[i].p.glint_model;
-    const bool lobe_model = model == ref::kGlintGrains || model == ref::kGlintZirr || model == ref::kGlintBeckmann;
+    const bool lobe_model = reference::glint::twin_of_gpu(cases[i].p.glint_model) != 0u;
     for (int k = 0; k < 3; ++k) {
       EXPECT_EQ(no_t_g[o + 41 + k], 0.0f) << i;         // no L_t
       EXPECT_EQ(no_t_g[o + 33 + k], 0.0f) << i;         // no L_g
@@ -727,8 +730,8 @@ TEST(SandParams, GpuStructMatchesGlslStd140Offsets) {
                     "layout(std430, set = 0, binding = 1) buffer O { float o[]; };\n"
                     "void main() { o[0] = u.p.palette[7].x + u.p.I_glints.x + u.p.SSS + u.p.sigma_g + u.p.scattering"
                     " + u.p.sig_b + float(u.p.appendix_compat + u.p.glint_model + u.p.energy_consistent)"
-                    " + u.p.glint_intensity + u.p.glint_light_cone + u.p.glint_size_variation + u.p.glint_alpha.w"
-                    " + u.p.glint_log_density + u.p.glint_color_saturation; }\n";
+                    " + u.p.glint_intensity + u.p.glint_light_cone + u.p.glint_pad0 + u.p.glint_alpha.w"
+                    " + u.p.glint_log_density + u.p.glint_parameters[1].w; }\n";
   glslang::InitializeProcess();  // reference-counted; idempotent
   {
     glslang::TShader sh(EShLangCompute);
@@ -760,10 +763,10 @@ TEST(SandParams, GpuStructMatchesGlslStd140Offsets) {
     EXPECT_EQ(at("energy_consistent"), int(offsetof(core::SandParamsGPU, energy_consistent)));
     EXPECT_EQ(at("glint_intensity"), int(offsetof(core::SandParamsGPU, glint_intensity)));
     EXPECT_EQ(at("glint_light_cone"), int(offsetof(core::SandParamsGPU, glint_light_cone)));
-    EXPECT_EQ(at("glint_size_variation"), int(offsetof(core::SandParamsGPU, glint_size_variation)));
+    EXPECT_EQ(at("glint_pad0"), int(offsetof(core::SandParamsGPU, glint_pad0)));
     EXPECT_EQ(at("glint_alpha"), int(offsetof(core::SandParamsGPU, glint_alpha)));
     EXPECT_EQ(at("glint_log_density"), int(offsetof(core::SandParamsGPU, glint_log_density)));
-    EXPECT_EQ(at("glint_color_saturation"), int(offsetof(core::SandParamsGPU, glint_color_saturation)));
+    EXPECT_EQ(at("glint_parameters"), int(offsetof(core::SandParamsGPU, glint_parameters)));
     int block = -1;
     for (int i = 0; i < prog.getNumUniformBlocks(); ++i)
       if (prog.getUniformBlock(i).name == "U") block = i;

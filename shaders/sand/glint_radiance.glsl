@@ -1,11 +1,10 @@
-// The microfacet BRDF shared by the glint models grains, zirr and beckmann
-// (Zirr & Kaplanyan 2016 eq. 1: Cook-Torrance with a Beckmann masking term
-// and Fresnel, sec. 3 "we are using the Eq. 1 with appropriate Fresnel term
-// and a Beckmann shadowing-masking term"), and the `beckmann` model: eq. 1
-// with the global NDF D_g of eq. 3-4, the smooth limit that both microdetail
-// models converge to when a pixel covers many microdetails.
-#ifndef GLINTLAB_SAND_GLINTS_BECKMANN_GLSL
-#define GLINTLAB_SAND_GLINTS_BECKMANN_GLSL
+// The microfacet BRDF that turns the NDF of every glint_D model
+// (glint/query.glsl) into radiance: Zirr & Kaplanyan 2016 eq. 1,
+// Cook-Torrance with a Beckmann masking term and Fresnel (sec. 3 "we are
+// using the Eq. 1 with appropriate Fresnel term and a Beckmann
+// shadowing-masking term").
+#ifndef GLINTLAB_SAND_GLINT_RADIANCE_GLSL
+#define GLINTLAB_SAND_GLINT_RADIANCE_GLSL
 
 #include "common/math.glsl"
 #include "common/beckmann.glsl"
@@ -40,7 +39,4 @@ vec3 glint_radiance(vec3 D, GlintFrame f, GlintRoughness r, float ior, vec3 L_i,
   return L_i * (intensity * F * 0.25 * G_cos) * D;
 }
 
-// The beckmann model's NDF: D_g(h) with alpha_g (widened by the light cone).
-float glint_beckmann_D(GlintFrame f, GlintRoughness r) { return beckmann_D(f.h, vec2(0.0), r.alpha_g); }
-
-#endif  // GLINTLAB_SAND_GLINTS_BECKMANN_GLSL
+#endif  // GLINTLAB_SAND_GLINT_RADIANCE_GLSL

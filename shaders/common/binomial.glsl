@@ -1,8 +1,8 @@
 // The number of reflecting microdetails in a cell: a binomial draw
 // B(xi, n, P) (Zirr & Kaplanyan 2016 sec. 4.3 "Sampling the Binomial
 // Distribution", Listing 1 line 18), deterministic for a given seed.
-#ifndef GLINTLAB_SAND_BINOMIAL_GLSL
-#define GLINTLAB_SAND_BINOMIAL_GLSL
+#ifndef GLINTLAB_COMMON_BINOMIAL_GLSL
+#define GLINTLAB_COMMON_BINOMIAL_GLSL
 
 #include "common/math.glsl"
 #include "common/normal_quantile.glsl"
@@ -53,7 +53,7 @@ float binomial_tail(float i, float n, float lnq, float u, float F_i) {
 // depends on n and p alone, for both counts the rounding can give (floor(n)
 // and floor(n) + 1): P(0), ln q and the Gaussian's sigma and cumulant terms.
 // Every cell of one grid level under one pixel draws from the same n and p
-// (sand/glints_zirr.glsl), so it sets up once and draws per cell with only
+// (glint/models/zirr.glsl), so it sets up once and draws per cell with only
 // the loop, the tail and the quantile left. On llvmpipe, which runs every
 // branch for every lane, the zirr variant of the default experiment's frame 4
 // (320x180) went from 47.1, 42.9, 43.8 to 43.0, 41.0, 40.7 ms (interleaved
@@ -154,4 +154,4 @@ float binomial_draw(float n_real, float p, float u, float u_round) {
   return binomial_draw(s, u, 0.0);
 }
 
-#endif  // GLINTLAB_SAND_BINOMIAL_GLSL
+#endif  // GLINTLAB_COMMON_BINOMIAL_GLSL

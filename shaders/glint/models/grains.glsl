@@ -7,9 +7,15 @@
 // D_m with alpha_m = sqrt(alpha_g^2 - alpha_l^2) (eq. 3-4, sec. 4.4) and the
 // local Beckmann lobe D_l(alpha_l) around it (Fig. 2), so a point of the cell
 // has the NDF D_l(h - x_i); over the cells its mean is D_m * D_l = D_g.
-#ifndef GLINTLAB_SAND_GLINTS_GRAINS_GLSL
-#define GLINTLAB_SAND_GLINTS_GRAINS_GLSL
+// glint_model truth=self limit=beckmann checks=finite,unbiased,deterministic
+// glint_parameter color_saturation default=0 range=0,1
+// color_saturation: coloured glints (sec. 4.5), 0 = white, 1 = the full colour wheel.
+// The conformance check "limit" does not apply: a point evaluation is one
+// microdetail's lobe whatever the footprint; its supersampled mean converges.
+#ifndef GLINTLAB_GLINT_MODELS_GRAINS_GLSL
+#define GLINTLAB_GLINT_MODELS_GRAINS_GLSL
 
+#include "glint/query.glsl"
 #include "common/math.glsl"
 #include "common/pcg3d.glsl"
 #include "common/beckmann.glsl"
@@ -35,4 +41,6 @@ vec3 glint_grains_D(vec2 uv, vec3 h, GlintRoughness r, float saturation) {
   return D * glint_tint(u.z, saturation, 1.0);
 }
 
-#endif  // GLINTLAB_SAND_GLINTS_GRAINS_GLSL
+vec3 glint_D(GlintQuery q) { return glint_grains_D(q.uv, q.h, q.rough, q.color_saturation); }
+
+#endif  // GLINTLAB_GLINT_MODELS_GRAINS_GLSL

@@ -2,16 +2,29 @@
 // Procedural Multiscale Materials", Listing 1 as a whole: the expected
 // number of reflecting microdetails of every grid cell under the pixel
 // footprint, drawn from a binomial distribution seeded per cell and per
-// quantised half vector, filtered over two grid levels.
-#ifndef GLINTLAB_SAND_GLINTS_ZIRR_GLSL
-#define GLINTLAB_SAND_GLINTS_ZIRR_GLSL
+// quantised half vector, filtered over two grid levels. Its truth is the
+// explicit microstructure it filters, `grains`, supersampled.
+// glint_model truth=grains limit=beckmann checks=finite,unbiased,limit,deterministic
+// glint_parameter color_saturation default=0 range=0,1
+// glint_parameter size_variation default=0 range=0,2
+// glint_parameter half_vector_blend default=false type=bool
+// color_saturation: coloured glints (sec. 4.5), 0 = white, 1 = the full colour
+// wheel. size_variation: std. dev. of the per-cell microdetail-size factor
+// (sec. 4.3, Listing 1 line 16). half_vector_blend (a glintlab extension; off:
+// Listing 1 exactly): a cell's reflectance is the bilinear blend of its counts
+// in the four half-vector bins nearest to h instead of the count of the one
+// bin h falls in, so a glint fades as h moves across a bin boundary instead of
+// being redrawn; the expectation per cell is unchanged.
+#ifndef GLINTLAB_GLINT_MODELS_ZIRR_GLSL
+#define GLINTLAB_GLINT_MODELS_ZIRR_GLSL
 
+#include "glint/query.glsl"
 #include "common/math.glsl"
 #include "common/pcg3d.glsl"
 #include "common/beckmann.glsl"
 #include "common/normal_quantile.glsl"
 #include "common/wrapped_floor.glsl"
-#include "sand/binomial.glsl"
+#include "common/binomial.glsl"
 #include "sand/glint_color.glsl"
 #include "sand/glint_footprint.glsl"
 #include "sand/glint_roughness.glsl"
@@ -56,7 +69,7 @@ GlintZirrPixel glint_zirr_pixel(vec3 h, GlintRoughness r) {
 //    m0 = D_l(0) itself is no offset in paraboloid units);
 //  - line 16: Cn = n_cell |gauss(rand(Hidx + C), 1, size_variation)|, at
 //    least GLINT_MIN_SIZE_FACTOR n_cell;
-//  - line 18: rn = binomial(rand(Hidx + C), Cn, pmf) (sand/binomial.glsl).
+//  - line 18: rn = binomial(rand(Hidx + C), Cn, pmf) (common/binomial.glsl).
 // rand(Hidx + C) is pcg3d of (seed, pcg3d(Hidx)): x the binomial's uniform,
 // y the size factor's, z the rounding of a non-integer Cn; the hue comes
 // from rand(C) ("a random albedo from the color wheel in each cell").
@@ -80,16 +93,16 @@ vec3 glint_zirr_bin(uvec2 seed, uvec2 hidx, float n_cell, BinomialSetup level, G
   return (rn * px.m0 / Cn) * glint_tint(hue, saturation, rn);
 }
 
-// r.hv_blend (a glintlab extension, SandParams glints.half_vector_blend):
+// hv_blend (the parameter half_vector_blend):
 // instead of the one bin h falls in, the bilinear blend of the four bins
 // whose centres surround it (bin k's centre at k + 1/2 in units of h_cell),
 // so a glint fades in and out as h moves instead of being redrawn at a bin
 // boundary. Each bin's expectation is P(h) m0, hence the blend's too.
 vec3 glint_zirr_cell(uvec2 seed, float n_cell, BinomialSetup level, GlintZirrPixel px, GlintRoughness r,
-                     float size_variation, float saturation) {
+                     float size_variation, float saturation, bool hv_blend) {
   vec3 uc = pcg3d_unit(pcg3d(uvec3(seed, GLINT_ZIRR_OFFSET_SALT)));
   vec2 harg = px.hp / r.h_cell + uc.xy;
-  if (!r.hv_blend)
+  if (!hv_blend)
     return glint_zirr_bin(seed, wrapped_floor(harg), n_cell, level, px, size_variation, saturation, uc.z);
   vec2 q = harg - 0.5;
   vec2 f = q - floor(q);
@@ -119,7 +132,8 @@ struct GlintZirr {
 // (line 14). Each level's cells are averaged with their coverage weights,
 // "we normalize by the total weight afterwards", and the levels blended by
 // mipWeight (line 24).
-GlintZirr glint_zirr(vec2 uv, vec2 dx, vec2 dy, vec3 h, GlintRoughness r, float size_variation, float saturation) {
+GlintZirr glint_zirr(vec2 uv, vec2 dx, vec2 dy, vec3 h, GlintRoughness r, float size_variation, float saturation,
+                     bool hv_blend) {
   GlintZirr z;
   z.D = vec3(0.0);
   z.cells = 0.0;
@@ -136,7 +150,7 @@ GlintZirr glint_zirr(vec2 uv, vec2 dx, vec2 dy, vec3 h, GlintRoughness r, float 
     int level = g == 0 ? fp.level0 : fp.level1;
     float cell = r.s_ref * exp2(float(level));
     float n_cell = exp2(2.0 * float(level)) / (r.stretch.x * r.stretch.y);
-    BinomialSetup level_draws = binomial_setup(n_cell, px.pmf);  // sand/binomial.glsl: once per level
+    BinomialSetup level_draws = binomial_setup(n_cell, px.pmf);  // common/binomial.glsl: once per level
     GlintWalk w = glint_walk(st_uv, st_dx, st_dy, cell);
     vec3 acc = vec3(0.0);
     float wsum = 0.0;
@@ -146,7 +160,7 @@ GlintZirr glint_zirr(vec2 uv, vec2 dx, vec2 dy, vec3 h, GlintRoughness r, float 
         if (!(c.weight > 0.0)) continue;
         z.cells += 1.0;
         acc += c.weight * glint_zirr_cell(glint_coherent_seed(c.index, level), n_cell, level_draws, px, r,
-                                          size_variation, saturation);
+                                          size_variation, saturation, hv_blend);
         wsum += c.weight;
       }
     }
@@ -157,4 +171,11 @@ GlintZirr glint_zirr(vec2 uv, vec2 dx, vec2 dy, vec3 h, GlintRoughness r, float 
   return z;
 }
 
-#endif  // GLINTLAB_SAND_GLINTS_ZIRR_GLSL
+vec3 glint_D(GlintQuery q) {
+  GlintZirr z = glint_zirr(q.uv, q.duv_dx, q.duv_dy, q.h, q.rough, q.size_variation, q.color_saturation,
+                           q.half_vector_blend > 0.5);
+  glint_cells_visited = z.cells;
+  return z.D;
+}
+
+#endif  // GLINTLAB_GLINT_MODELS_ZIRR_GLSL

@@ -1,0 +1,223 @@
+#include "core/material/glint_model.h"
+
+#include "core/util/content_hash.h"
+#include "core/util/json_check.h"
+#include "core/vk/shader_compiler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+namespace glintlab::core {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw ConfigError(p.string() + ": cannot read the glint model file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream in(s);
+  while (std::getline(in, cur, sep)) out.push_back(cur);
+  return out;
+}
+
+bool parse_double(const std::string& s, double& v) {
+  if (s.empty()) return false;
+  std::istringstream in(s);
+  in >> v;
+  return in && in.peek() == std::char_traits<char>::eof() && std::isfinite(v);
+}
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+const char* kModelSyntax =
+    "// glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic";
+const char* kParameterSyntax =
+    "// glint_parameter NAME default=VALUE range=LO,HI  or  // glint_parameter NAME default=true|false type=bool";
+
+}  // namespace
+
+std::vector<std::string> glint_check_names() { return {"finite", "unbiased", "limit", "deterministic"}; }
+
+const GlintParameter* GlintModelDecl::parameter(const std::string& n) const {
+  for (const auto& p : parameters)
+    if (p.name == n) return &p;
+  return nullptr;
+}
+
+GlintModelDecl parse_glint_model(const std::string& name, const std::string& where, const std::string& text) {
+  GlintModelDecl d;
+  d.name = name;
+  d.content_hash = ContentHash().add(std::string_view(text)).hex();
+  bool declared = false;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  auto fail = [&](const std::string& what, const char* syntax) {
+    throw ConfigError(where + ":" + std::to_string(line_no) + ": " + what + "; expected " + syntax);
+  };
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::istringstream words(line);
+    std::string slashes, kind;
+    words >> slashes >> kind;
+    if (slashes != "//" || (kind != "glint_model" && kind != "glint_parameter")) continue;
+    std::vector<std::string> fields;
+    for (std::string w; words >> w;) fields.push_back(w);
+    if (kind == "glint_model") {
+      if (declared) fail("a second glint_model line", kModelSyntax);
+      declared = true;
+      for (const auto& f : fields) {
+        auto eq = f.find('=');
+        std::string key = f.substr(0, eq), value = eq == std::string::npos ? "" : f.substr(eq + 1);
+        if (key == "truth" && !value.empty()) {
+          d.truth = value;
+        } else if (key == "limit" && (value == "beckmann" || value == "ggx")) {
+          d.limit = value;
+        } else if (key == "checks" && !value.empty()) {
+          d.checks = split(value, ',');
+          auto all = glint_check_names();
+          for (const auto& c : d.checks)
+            if (std::find(all.begin(), all.end(), c) == all.end())
+              fail("unknown check \"" + c + "\" (allowed: finite, unbiased, limit, deterministic)", kModelSyntax);
+        } else {
+          fail("unknown or empty field \"" + f + "\" (limit: beckmann or ggx)", kModelSyntax);
+        }
+      }
+    } else {
+      if (fields.empty() || !is_identifier(fields[0])) fail("a parameter needs a GLSL identifier as its name", kParameterSyntax);
+      GlintParameter p;
+      p.name = fields[0];
+      bool has_def = false, has_range = false;
+      std::string def_text;
+      for (size_t i = 1; i < fields.size(); ++i) {
+        const auto& f = fields[i];
+        auto eq = f.find('=');
+        std::string key = f.substr(0, eq), value = eq == std::string::npos ? "" : f.substr(eq + 1);
+        if (key == "default") {
+          def_text = value;
+          has_def = true;
+        } else if (key == "type" && value == "bool") {
+          p.is_bool = true;
+        } else if (key == "range") {
+          auto lohi = split(value, ',');
+          if (lohi.size() != 2 || !parse_double(lohi[0], p.lo) || !parse_double(lohi[1], p.hi) || p.lo > p.hi)
+            fail("range of " + p.name + " must be two finite numbers LO,HI with LO <= HI", kParameterSyntax);
+          has_range = true;
+        } else {
+          fail("unknown field \"" + f + "\" of parameter " + p.name, kParameterSyntax);
+        }
+      }
+      if (!has_def) fail("parameter " + p.name + " has no default", kParameterSyntax);
+      if (p.is_bool) {
+        if (has_range) fail("a bool parameter (" + p.name + ") has no range", kParameterSyntax);
+        if (def_text != "true" && def_text != "false") fail("default of bool " + p.name + " must be true or false", kParameterSyntax);
+        p.def = def_text == "true" ? 1.0 : 0.0;
+        p.lo = 0.0;
+        p.hi = 1.0;
+      } else {
+        if (!has_range) fail("parameter " + p.name + " has no range", kParameterSyntax);
+        if (!parse_double(def_text, p.def) || p.def < p.lo || p.def > p.hi)
+          fail("default of " + p.name + " must be a number in its range", kParameterSyntax);
+      }
+      if (d.parameter(p.name)) fail("parameter " + p.name + " declared twice", kParameterSyntax);
+      d.parameters.push_back(p);
+      if (d.parameters.size() > kMaxGlintParameters)
+        fail("more than " + std::to_string(kMaxGlintParameters) + " parameters", kParameterSyntax);
+    }
+  }
+  if (!declared)
+    throw ConfigError(where + ": no glint_model declaration line; expected a comment line " + kModelSyntax);
+  return d;
+}
+
+GlintModelDecl glint_model_from_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    throw ConfigError(path + ": glint model file not found (a GLSL file with a glint_model declaration line)");
+  GlintModelDecl d = parse_glint_model(path, path, read_text(path));
+  d.file = fs::absolute(path).lexically_normal().string();
+  d.builtin = false;
+  if (d.truth != "self") {
+    const GlintModelDecl* t = find_builtin_glint_model(d.truth);
+    if (!t || t->truth != "self") {
+      std::string allowed = "\"self\"";
+      for (const auto& m : builtin_glint_models())
+        if (m.truth == "self") allowed += ", \"" + m.name + "\"";
+      throw ConfigError(path + ": truth=" + d.truth + " is not allowed; allowed " + allowed);
+    }
+  }
+  return d;
+}
+
+const std::vector<GlintModelDecl>& builtin_glint_models() {
+  static std::vector<GlintModelDecl> models;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    fs::path dir = fs::path(default_shader_compiler().shader_dir()) / "glint" / "models";
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.is_regular_file() && e.path().extension() == ".glsl") files.push_back(e.path());
+    if (ec || files.empty()) throw ConfigError(dir.string() + ": no glint model files (*.glsl) found");
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      std::string name = f.stem().string();
+      if (name == kGlintModelKajs || name == kGlintModelNone || !is_identifier(name))
+        throw ConfigError(f.string() + ": a built-in glint model needs a GLSL identifier as its file name other than "
+                          "\"kajs\" and \"none\"");
+      GlintModelDecl d = parse_glint_model(name, f.string(), read_text(f));
+      d.file = "glint/models/" + f.filename().string();
+      d.builtin = true;
+      models.push_back(std::move(d));
+    }
+    for (const auto& m : models) {
+      const GlintModelDecl* t = nullptr;
+      for (const auto& o : models)
+        if (o.name == m.truth) t = &o;
+      if (m.truth != "self" && (!t || t->truth != "self"))
+        throw ConfigError(dir.string() + "/" + m.name + ".glsl: truth=" + m.truth +
+                          " is neither \"self\" nor a built-in model whose truth is \"self\"");
+    }
+  });
+  return models;
+}
+
+const GlintModelDecl* find_builtin_glint_model(const std::string& name) {
+  for (const auto& m : builtin_glint_models())
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+std::vector<std::string> glint_model_names() {
+  std::vector<std::string> out{kGlintModelKajs};
+  for (const auto& m : builtin_glint_models()) out.push_back(m.name);
+  out.push_back(kGlintModelNone);
+  return out;
+}
+
+uint32_t glint_model_gpu_id(const std::string& name) {
+  if (name == kGlintModelNone) return 0u;
+  if (name == kGlintModelKajs) return 1u;
+  const auto& models = builtin_glint_models();
+  for (size_t i = 0; i < models.size(); ++i)
+    if (models[i].name == name) return uint32_t(2 + i);
+  return uint32_t(2 + models.size());
+}
+
+}  // namespace glintlab::core

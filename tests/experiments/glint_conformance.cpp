@@ -1,0 +1,237 @@
+// The conformance suite (`glintlab glint-test`) on every built-in model and
+// on user model files that must fail it, and a user's model file in an
+// experiment: validated before any work, compile errors named by line, its
+// content part of the run's inputs (a changed file refuses --resume).
+#include "experiments/glint_test/glint_test.h"
+#include "core/util/json_check.h"
+#include "core/vk/shader_compiler.h"
+#include "core/material/program.h"
+#include "experiments/runner/runner.h"
+#include "experiments/spec/experiment_spec.h"
+
+#include "tests/support/temp_dir.h"
+#include "tests/support/vk_test_util.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace glintlab;
+
+namespace {
+
+const fs::path kModels = fs::path(GLINTLAB_TEST_DATA_DIR) / "glint_models";
+
+const GlintCheckResult& check(const GlintTestReport& r, const std::string& name) {
+  for (const auto& c : r.checks)
+    if (c.name == name) return c;
+  throw std::runtime_error("no check " + name);
+}
+
+GlintTestReport conformance(const std::string& model, const std::vector<std::string>& params = {}) {
+  auto& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  const core::GlintModelDecl d = resolve_glint_model(model);
+  return run_glint_test(ctx, d, glint_test_parameters(d, params));
+}
+
+}  // namespace
+
+TEST(GlintTest, EveryBuiltInModelPassesEveryCheckItDeclares) {
+  for (const auto& m : core::builtin_glint_models()) {
+    GlintTestReport r = conformance(m.name);
+    SCOPED_TRACE(r.text());
+    EXPECT_TRUE(r.all_pass()) << m.name;
+    size_t applying = 0;
+    for (const auto& c : r.checks) {
+      EXPECT_TRUE(std::isfinite(c.figure)) << m.name << " " << c.name;
+      if (c.applies && !c.figure_only) {
+        EXPECT_TRUE(c.pass) << m.name << " " << c.name;
+        ++applying;
+      }
+    }
+    EXPECT_GE(applying, 3u) << m.name;  // finite, unbiased, deterministic at least
+    if (std::getenv("GLINTLAB_PRINT_ERRORS")) std::printf("%s", r.text().c_str());
+  }
+}
+
+TEST(GlintTest, TwiceBeckmannFailsUnbiasedAndNanAtGrazingFailsFinite) {
+  // the inline Beckmann with k = 1 passes; with k = 2 it is 2 x Beckmann
+  GlintTestReport one = conformance((kModels / "beckmann_inline.glsl").string());
+  EXPECT_TRUE(one.all_pass()) << one.text();
+  GlintTestReport two = conformance((kModels / "beckmann_inline.glsl").string(), {"k=2"});
+  EXPECT_FALSE(two.all_pass());
+  EXPECT_FALSE(check(two, "unbiased").pass) << two.text();
+  EXPECT_TRUE(check(two, "finite").pass) << two.text();
+  EXPECT_FALSE(check(two, "limit").pass) << two.text();
+
+  GlintTestReport nan = conformance((kModels / "nan_grazing.glsl").string());
+  EXPECT_FALSE(check(nan, "finite").pass) << nan.text();
+  EXPECT_GT(check(nan, "finite").figure, 0.0);
+  EXPECT_NE(check(nan, "finite").detail.find("NaN"), std::string::npos);
+}
+
+TEST(GlintTest, TheChecksCompareWithTheDeclaredSmoothLimit) {
+  // GGX declared with its own limit passes; the same function declared with the Beckmann limit is biased
+  GlintTestReport ggx = conformance((kModels / "ggx_inline.glsl").string());
+  EXPECT_TRUE(ggx.all_pass()) << ggx.text();
+  test::TempDir dir("ggx_as_beckmann");
+  std::ifstream in(kModels / "ggx_inline.glsl");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const size_t at = text.find("limit=ggx");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 9, "limit=beckmann");
+  std::ofstream(dir / "ggx_as_beckmann.glsl") << text;
+  GlintTestReport wrong = conformance((dir / "ggx_as_beckmann.glsl").string());
+  EXPECT_FALSE(check(wrong, "unbiased").pass) << wrong.text();
+  EXPECT_TRUE(check(wrong, "finite").pass) << wrong.text();
+}
+
+TEST(GlintTest, LodCoherenceOfAFootprintIgnoringModelIsReported) {
+  GlintTestReport point = conformance((kModels / "point_sample.glsl").string());
+  const GlintCheckResult& lod = check(point, "LOD coherence");
+  EXPECT_TRUE(lod.figure_only);
+  // its value at the centre knows nothing of the four sub-footprints' cells
+  EXPECT_LT(lod.figure, 0.5) << point.text();
+  EXPECT_GT(lod.figure, -0.5) << point.text();
+  // the smooth limit is the same everywhere: as coherent as the exact box filter
+  GlintTestReport beck = conformance("beckmann");
+  EXPECT_EQ(check(beck, "LOD coherence").figure, 1.0);
+  EXPECT_EQ(check(beck, "shift coherence").figure, 1.0);
+}
+
+TEST(GlintTest, ParametersAndModelsAreValidated) {
+  const core::GlintModelDecl zirr = resolve_glint_model("zirr");
+  EXPECT_THROW(glint_test_parameters(zirr, {"size_variation=3"}), ConfigError);
+  EXPECT_THROW(glint_test_parameters(zirr, {"k=1"}), ConfigError);
+  EXPECT_THROW(glint_test_parameters(zirr, {"half_vector_blend=2"}), ConfigError);
+  auto p = glint_test_parameters(zirr, {"size_variation=0.5"});
+  EXPECT_EQ(p[size_t(zirr.parameter("size_variation") - zirr.parameters.data())], 0.5f);
+  EXPECT_THROW(resolve_glint_model("zirr2"), ConfigError);
+}
+
+// ---------------------------------------------------------------- a user's model file in an experiment
+
+namespace {
+
+nlohmann::json user_experiment(const nlohmann::json& model) {
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "name": "user-model",
+    "resolution": [32, 18],
+    "scene": {"mesh": {"type": "wavy", "size": 10, "tessellation": 8, "amplitude": 0.4, "wavelength": 5}},
+    "camera_path": {"type": "orbit", "fps": 30, "frames": 2, "center": [0, 0, 0], "radius": 3.6,
+                    "height": 1.7, "start_deg": 180, "end_deg": 182, "fov": 40},
+    "material": {"preset": "thesis-default", "sigmoid_b": 100},
+    "variants": [{"name": "user"}],
+    "reference": {"grid": 2},
+    "metrics": ["deltaE2000"],
+    "output": {"exr": false, "png": false}
+  })");
+  j["variants"][0]["material"] = {{"glint_model", model}};
+  return j;
+}
+
+RunOptions options(const fs::path& exp, const fs::path& out) {
+  RunOptions o;
+  o.experiment = exp.string();
+  o.out_dir = out.string();
+  o.cache_dir = (out.parent_path() / "cache").string();
+  o.validation = true;
+  o.report = false;
+  return o;
+}
+
+void write(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+TEST(UserGlintModel, OutOfRangeParameterIsRefusedBeforeAnyWork) {
+  test::TempDir dir("user_glint_model");
+  fs::copy_file(kModels / "beckmann_inline.glsl", dir.path() / "m.glsl");
+  write(dir.path() / "e.json", user_experiment({{"file", "m.glsl"}, {"parameters", {{"k", 5}}}}).dump());
+  std::ostringstream log;
+  EXPECT_EQ(run_experiment(options(dir.path() / "e.json", dir.path() / "out"), log), 2) << log.str();
+  EXPECT_NE(log.str().find("parameters.k"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("[0, 2]"), std::string::npos) << log.str();
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "records.jsonl"));
+  // an unknown parameter and a missing file are refused the same way
+  write(dir.path() / "e.json", user_experiment({{"file", "m.glsl"}, {"parameters", {{"q", 1}}}}).dump());
+  std::ostringstream log2;
+  EXPECT_EQ(run_experiment(options(dir.path() / "e.json", dir.path() / "out"), log2), 2) << log2.str();
+  EXPECT_NE(log2.str().find("parameters.q"), std::string::npos) << log2.str();
+  write(dir.path() / "e.json", user_experiment({{"file", "missing.glsl"}}).dump());
+  std::ostringstream log3;
+  EXPECT_EQ(run_experiment(options(dir.path() / "e.json", dir.path() / "out"), log3), 2) << log3.str();
+  EXPECT_NE(log3.str().find("missing.glsl"), std::string::npos) << log3.str();
+}
+
+TEST(UserGlintModel, SyntaxErrorExitsThreeNamingItsLine) {
+  test::TempDir dir("user_glint_model");
+  fs::copy_file(kModels / "syntax_error.glsl", dir.path() / "bad.glsl");
+  write(dir.path() / "e.json", user_experiment({{"file", "bad.glsl"}}).dump());
+  std::ostringstream log;
+  int code = -1;
+  try {
+    code = run_experiment(options(dir.path() / "e.json", dir.path() / "out"), log);
+  } catch (const core::ShaderCompileError& e) {
+    code = 3;  // what run_guarded maps it to
+    log << e.what();
+  }
+  EXPECT_EQ(code, 3) << log.str();
+  EXPECT_NE(log.str().find("bad.glsl:5"), std::string::npos) << log.str();
+}
+
+TEST(UserGlintModel, ResumeAfterTheFileChangedIsRefused) {
+  test::TempDir dir("user_glint_model");
+  fs::copy_file(kModels / "beckmann_inline.glsl", dir.path() / "m.glsl");
+  write(dir.path() / "e.json", user_experiment({{"file", "m.glsl"}, {"truth", "self"}}).dump());
+  RunOptions o = options(dir.path() / "e.json", dir.path() / "out");
+  o.max_frames = 1;
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(o, log), 0) << log.str();
+  const std::string header = read(dir.path() / "out" / "records.jsonl");
+  EXPECT_NE(header.find("glint_model "), std::string::npos) << "the file's hash is one of the run's inputs";
+  o.resume = true;
+  std::ostringstream same;
+  EXPECT_EQ(run_experiment(o, same), 0) << same.str();  // unchanged: resumes
+  auto reference_key = [&] {
+    const ExperimentSpec spec = ExperimentSpec::from_json(read_json_file((dir.path() / "e.json").string()),
+                                                          (dir.path() / "e.json").string());
+    return core::sand_program(spec.variants[0].material, {}, core::ProgramRole::Reference).cache_key();
+  };
+  const std::string key_before = reference_key();
+  write(dir.path() / "m.glsl", read(dir.path() / "m.glsl") + "// changed\n");
+  EXPECT_NE(reference_key(), key_before) << "the file's content is part of the reference cache key";
+  std::ostringstream changed;
+  EXPECT_EQ(run_experiment(o, changed), 2) << changed.str();
+  EXPECT_NE(changed.str().find("--resume"), std::string::npos) << changed.str();
+}
+
+TEST(UserGlintModel, NegativeValuesAreDefectsOfTheRun) {
+  test::TempDir dir("user_glint_model");
+  fs::copy_file(kModels / "negative.glsl", dir.path() / "neg.glsl");
+  write(dir.path() / "e.json", user_experiment({{"file", "neg.glsl"}}).dump());
+  RunOptions o = options(dir.path() / "e.json", dir.path() / "out");
+  o.max_frames = 1;
+  std::ostringstream log;
+  EXPECT_EQ(run_experiment(o, log), 1) << log.str();
+  EXPECT_NE(log.str().find("negative pixels"), std::string::npos) << log.str();
+}
