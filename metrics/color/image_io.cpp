@@ -72,11 +72,14 @@ void write_atomic(const std::string& path, const char* format, OIIO::ImageSpec s
 }
 
 void write_exr_impl(const std::string& path, const Image& img, const std::array<float, 8>* chromaticities,
-                    bool half) {
+                    bool half, const std::vector<std::string>& names = {}) {
   check_image(path, img);
+  if (!names.empty() && names.size() != std::size_t(img.channels))
+    throw std::invalid_argument("'" + path + "': " + std::to_string(names.size()) + " channel names for an image of " +
+                                std::to_string(img.channels) + " channels");
   OIIO::ImageSpec spec(img.width, img.height, img.channels, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-  spec.channelnames = channel_names(img.channels);
-  spec.alpha_channel = (img.channels == 2) ? 1 : (img.channels >= 4 ? 3 : -1);
+  spec.channelnames = names.empty() ? channel_names(img.channels) : names;
+  spec.alpha_channel = !names.empty() ? -1 : (img.channels == 2) ? 1 : (img.channels >= 4 ? 3 : -1);
   spec.attribute("compression", "zip");
   if (chromaticities)
     spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chromaticities->data());
@@ -147,8 +150,8 @@ void write_exr(const std::string& path, const Image& img, const std::array<float
   write_exr_impl(path, img, &chromaticities, half);
 }
 
-void write_exr_data(const std::string& path, const Image& img, bool half) {
-  write_exr_impl(path, img, nullptr, half);
+void write_exr_data(const std::string& path, const Image& img, bool half, const std::vector<std::string>& names) {
+  write_exr_impl(path, img, nullptr, half, names);
 }
 
 void write_png(const std::string& path, const Image& display_encoded) {
