@@ -1,9 +1,9 @@
 // glintlab's use of OpenImageIO lives in a shared library of its own, libglintlab_oiio.so
-// (core/util/oiio_plugin/), loaded with dlopen the first time a function below is called. OpenImageIO
+// (experiments/oiio_plugin/), loaded with dlopen the first time a function below is called. OpenImageIO
 // links about 260 shared libraries (its format plugins: ffmpeg, libheif, libraw, OpenVDB, ...), whose
 // loading and relocation is most of a process's start-up; commands that read no image through it
-// (`check`, `list`, `--help`, `compare` and `measure` on the OpenEXR files the OpenEXR core library
-// reads: metrics/color/image_io.h, experiments/measure/exr_scanlines.h) never load them.
+// (`check`, `list`, `--help`, `compare` and `measure --no-report` of plain OpenEXR files, which the
+// OpenEXR core library reads: experiments/measure/exr_scanlines.h) never load them.
 //
 // The library is found as the program's other libraries are (the RUNPATH of the program or module
 // that calls: beside build/glintlab in the build tree, PREFIX/lib/glintlab when installed). A library

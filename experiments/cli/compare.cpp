@@ -16,6 +16,7 @@
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/measure/exr_scanlines.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/color/image_io.h"
 #include "metrics/color/measurement_space.h"
@@ -260,7 +261,7 @@ Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image
       int channels = source.channels;
       in.path = source.path;
       Image read;
-      if (!source.pixels) read = metrics::read_image(source.path, &tag, &channels);
+      if (!source.pixels) read = read_image_file(source.path, &tag, &channels);
       const Image& img = source.pixels ? *source.pixels : read;
       if (channels < 3)  // said, never silent: what the file's channels are taken for
         err << "compare: " << what << " '" << in.path << "' has " << channels << " channel" << (channels == 1 ? "" : "s")

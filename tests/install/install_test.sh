@@ -47,6 +47,9 @@ if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf
   libs=$(ldd "$build/glintlab")
   declare -A so_of real_of
   for lib in $needed; do
+    # The dynamic loader itself (libc6; needed for __tls_get_addr by the position-independent code),
+    # which ldd lists by its path, without "=>".
+    case $lib in ld-linux*.so.*) continue ;; esac
     so_of[$lib]=$(awk -v l="$lib" '$1 == l && $2 == "=>" {print $3}' <<<"$libs")
     [ -n "${so_of[$lib]}" ] || fail "ldd does not resolve $lib, which $build/glintlab needs"
     real_of[$lib]=$(readlink -f "${so_of[$lib]}")
@@ -54,6 +57,7 @@ if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf
   # One query for all ("package[:arch]: path" a line); the link's path or the file's is registered.
   owners=$(dpkg -S "${so_of[@]}" "${real_of[@]}" 2>/dev/null || true)
   for lib in $needed; do
+    [ -n "${so_of[$lib]:-}" ] || continue
     pkg=$(grep -F -e ": ${so_of[$lib]}" -e ": ${real_of[$lib]}" <<<"$owners" | head -n1 | sed 's/[:,].*//' || true)
     [ -n "$pkg" ] || continue
     grep -qx "$pkg" <<<"$depends" || fail "the program needs $lib, of the package $pkg, which Depends does not name"
@@ -68,7 +72,8 @@ for f in ./usr/bin/glintlab ./usr/share/glintlab/shaders/passes/surface.vert ./u
   ./usr/share/glintlab/experiments/regression.json ./usr/share/glintlab/experiments/paths/orbit-close.json \
   ./usr/share/glintlab/experiments/thesis/fig6-7-hdri-match.json \
   ./usr/share/glintlab/experiments/report/glintlab_report.py ./usr/share/glintlab/experiments/tune/glintlab_tune.py \
-  ./usr/share/glintlab/metrics/color/ocio/config.ocio ./usr/lib/python3/dist-packages/glintlab/__init__.py; do
+  ./usr/share/glintlab/metrics/color/ocio/config.ocio ./usr/lib/python3/dist-packages/glintlab/__init__.py \
+  ./usr/lib/glintlab/libglintlab_oiio.so; do
   grep -qx "$f" <<<"$files" || fail "the package lacks $f"
 done
 grep -Eqx '\./usr/lib/python3/dist-packages/glintlab/_core\.cpython-[0-9]+-[a-z0-9_]+-linux-gnu\.so' <<<"$files" ||
@@ -149,7 +154,7 @@ python=/usr/bin/python3
 run env PYTHONPATH="$tmp/root/usr/lib/python3/dist-packages" "$python" -c "import glintlab" ||
   { cat "$tmp/out"; fail "python3 -c 'import glintlab' failed with the package's module"; }
 F=$src/tests/data/flip
-cp "$F/hdr_bimodal_ref.exr" "$F/hdr_bimodal_test.exr" "$tmp/inputs/"
+cp "$F/hdr_bimodal_ref.exr" "$F/hdr_bimodal_test.exr" "$F/ldr_ref.png" "$tmp/inputs/"
 run "$pkg" compare "$tmp/inputs/hdr_bimodal_test.exr" "$tmp/inputs/hdr_bimodal_ref.exr" --metric flip --json ||
   { cat "$tmp/out"; fail "the package's glintlab compare failed"; }
 cp "$tmp/out" "$tmp/cli-compare.json"
@@ -159,6 +164,7 @@ assert glintlab._core.data_folder() == '$tmp/root/usr/share/glintlab', glintlab.
 r = glintlab.compare('$tmp/inputs/hdr_bimodal_ref.exr', '$tmp/inputs/hdr_bimodal_test.exr', metrics='flip')
 cli = json.load(open('$tmp/cli-compare.json'))['metrics']['flip']
 assert r['flip']['mean'] == cli['mean'] and r['flip']['map'].shape == (64, 96), (r['flip']['mean'], cli)
+assert glintlab.read_image('$tmp/inputs/ldr_ref.png').shape == (64, 96, 3)  # OpenImageIO, through libglintlab_oiio.so
 print(glintlab.__file__)" || { cat "$tmp/out"; fail "the package's Python module does not compare as its CLI does"; }
 grep -qxF "$tmp/root/usr/lib/python3/dist-packages/glintlab/__init__.py" "$tmp/out" ||
   fail "python3 imported glintlab from elsewhere: $(cat "$tmp/out")"

@@ -180,8 +180,10 @@ def test_wrong_inputs_raise_documented_exceptions(tmp_path):
         glintlab.run("regression", out=str(tmp_path / "run"), frames=0)
     with pytest.raises(ValueError, match=r"no-such-experiment: no such experiment file"):
         glintlab.run("no-such-experiment", out=str(tmp_path / "run"))
-    with pytest.raises(OSError):
-        glintlab.check(str(tmp_path / "no-summary.json"), str(tmp_path / "no-baseline.json"))
+    no_summary = str(tmp_path / "no-summary.json")
+    with pytest.raises(ValueError, match="no-summary.json: cannot open file"):
+        glintlab.check(no_summary, no_summary)
+    assert cli("check", no_summary, no_summary, check=False).returncode == 2  # bad input for the CLI too
     with pytest.raises(OSError):  # a run folder that cannot be made
         glintlab.measure(None, os.path.join(BLENDER, "ref") + ":" + COMBINED, out="/proc/glintlab-cannot-write")
     assert not os.path.exists(tmp_path / "run")  # every error came before anything was written

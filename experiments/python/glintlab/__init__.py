@@ -47,6 +47,15 @@ def _say(text):
         sys.stderr.write(text)
 
 
+def _finish(code, log):
+    """What the command prints, on sys.stderr; its bad-input exit (2) raised as ValueError with its
+    "error: " lines."""
+    if code == 2:
+        errors = [line[len("error: "):] for line in log.splitlines() if line.startswith("error: ")]
+        raise ValueError("\n".join(errors) or log.strip())
+    _say(log)
+
+
 def _pixels(value, what, frames):
     """An array as float32 C-contiguous (T x) H x W x C and the colour space its values are in."""
     a = np.asarray(value)
@@ -253,8 +262,7 @@ def measure(reference, tests, motion=None, convention="pixels", depth=None, metr
             o.metrics = metrics.split(",") if isinstance(metrics, str) else list(metrics)
         if fps is not None:
             o.fps = float(fps)
-        code, log = _core.measure(o)
-        _say(log)
+        _finish(*_core.measure(o))
         with open(os.path.join(folder, "summary.json")) as f:
             summary = json.load(f)
         return summary, _read_records(os.path.join(folder, "frames.csv"))
@@ -279,8 +287,8 @@ def run(experiment, out=None, variants=None, frames=None, resolution=None):
         o.max_frames = frames
     if isinstance(resolution, (tuple, list)):
         resolution = "x".join(str(v) for v in resolution)
-    _code, log, folder = _core.run(o, resolution or "")
-    _say(log)
+    code, log, folder = _core.run(o, resolution or "")
+    _finish(code, log)
     with open(os.path.join(folder, "summary.json")) as f:
         return json.load(f)
 
