@@ -14,6 +14,7 @@ PKGS=(
   clang libclang-rt-14-dev llvm
   python3 python3-numpy python3-scipy python3-matplotlib python3-pil python3-jinja2 chromium  # report (experiments/report/) and its browser test
   python3-optuna python3-sklearn parallel slurm-wlm munge  # tune (experiments/tune/): Optuna, its importances, schedulers
+  pybind11-dev python3-dev python3-pybind11 python3-pytest  # `import glintlab` (experiments/python/) and its tests
   strace  # the install test: the installed glintlab opens nothing in the source or build tree (tests/install/)
 )
 missing=()

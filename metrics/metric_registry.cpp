@@ -10,8 +10,16 @@
 #include "metrics/error_metrics.h"
 #include "metrics/flip.h"
 #include "metrics/pooled_error.h"
+#include "metrics/stats.h"
 
 namespace glintlab::metrics {
+
+double map_percentile(const Image& m, double p) {
+  std::vector<float> v(m.data.begin(), m.data.end());
+  if (v.empty() || std::any_of(v.begin(), v.end(), [](float x) { return std::isnan(x); }))
+    return std::numeric_limits<double>::quiet_NaN();
+  return nearest_rank(v, p);
+}
 
 // Mean (in double) and max of a 1-channel map; NaN anywhere gives NaN for both.
 void map_mean_max(const Image& m, double* mean, double* max) {

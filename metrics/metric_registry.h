@@ -116,6 +116,10 @@ struct MetricResult {
 // Mean (in double) and max of a 1-channel map; NaN anywhere gives NaN for both.
 void map_mean_max(const Image& map, double* mean, double* max);
 
+// The nearest-rank percentile p in (0, 1] of a 1-channel map (metrics/stats.h); NaN when the map is
+// empty or holds a NaN.
+double map_percentile(const Image& map, double p);
+
 // Throws std::invalid_argument for an unknown name (the message lists the allowed names) and for
 // mismatched sizes (the message states both sizes).
 MetricResult evaluate_metric(const std::string& name, const Image& test_xyz, const Image& ref_xyz,

@@ -38,9 +38,7 @@ double Statistics::percentile(double p) const {
   if (!(p > 0.0 && p <= 1.0)) throw std::invalid_argument("Statistics::percentile: p must be in (0, 1]");
   if (values_.empty() || nan_ > 0) return kNaN;
   std::vector<double> v = values_;
-  const std::size_t rank = std::max<std::size_t>(1, std::size_t(std::ceil(p * double(v.size()))));
-  std::nth_element(v.begin(), v.begin() + (rank - 1), v.end());
-  return v[rank - 1];
+  return nearest_rank(v, p);
 }
 
 }  // namespace glintlab::metrics

@@ -12,10 +12,21 @@
 // The mean is a plain running sum in double (per-frame values, not pixels).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 namespace glintlab::metrics {
+
+// The nearest-rank percentile of `values` (reordered in place): the ceil(p n)-th smallest value, p in
+// (0, 1]. The caller has ruled out NaN and an empty vector.
+template <typename T>
+T nearest_rank(std::vector<T>& values, double p) {
+  const std::size_t rank = std::max<std::size_t>(1, std::size_t(std::ceil(p * double(values.size()))));
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(rank - 1), values.end());
+  return values[rank - 1];
+}
 
 class Statistics {
  public:

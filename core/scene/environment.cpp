@@ -10,7 +10,7 @@
 #include "core/scene/sky_preetham.h"
 #include "core/scene/spherical_harmonics.h"
 
-#include <OpenImageIO/imageio.h>
+#include "core/util/oiio_plugin.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -195,20 +195,20 @@ LatLong read_latlong(const std::string& path, const std::string& color_space) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw IoError(path + ": cannot open environment map: " + std::strerror(errno));
   ::close(fd);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw ConfigError(path + ": cannot open environment map: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const int W = spec.width, H = spec.height, nch = spec.nchannels;
-  if (W <= 0 || H <= 0 || nch <= 0) throw ConfigError(path + ": empty image");
-  if (int64_t(W) * H > (int64_t(64) << 20) || nch > 1024)
-    throw ConfigError(path + ": the environment map's header claims " + std::to_string(W) + "x" + std::to_string(H) +
-                      " pixels and " + std::to_string(nch) + " channels; allowed: at most 64 Mpix and 1024 channels");
-  if (W != 2 * H)
-    throw ConfigError(path + ": not an equirectangular lat-long map: expected width = 2 x height, got " +
-                             std::to_string(W) + "x" + std::to_string(H));
-  std::vector<float> all(size_t(W) * size_t(H) * size_t(nch));
-  if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, all.data()))
-    throw ConfigError(path + ": cannot read pixels: " + in->geterror());
+  oiio::EnvironmentInfo spec;
+  std::vector<float> all;
+  oiio::api().read_environment(path, [&](const oiio::EnvironmentInfo& info) {
+    const int W = info.width, H = info.height, nch = info.channels;
+    if (W <= 0 || H <= 0 || nch <= 0) throw ConfigError(path + ": empty image");
+    if (int64_t(W) * H > (int64_t(64) << 20) || nch > 1024)
+      throw ConfigError(path + ": the environment map's header claims " + std::to_string(W) + "x" + std::to_string(H) +
+                        " pixels and " + std::to_string(nch) + " channels; allowed: at most 64 Mpix and 1024 channels");
+    if (W != 2 * H)
+      throw ConfigError(path + ": not an equirectangular lat-long map: expected width = 2 x height, got " +
+                               std::to_string(W) + "x" + std::to_string(H));
+    spec = info;
+  }, all);
+  const int W = spec.width, H = spec.height, nch = spec.channels;
 
   LatLong m;
   m.width = W;
@@ -229,10 +229,9 @@ LatLong read_latlong(const std::string& path, const std::string& color_space) {
     static const float kRec709[8] = {0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f};
     static const float kAP0[8] = {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f};
     static const float kAP1[8] = {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f};
-    const OIIO::ParamValue* chroma = spec.find_attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8));
-    std::string oiio_cs = spec.get_string_attribute("oiio:ColorSpace");
-    if (chroma) {
-      const float* c = static_cast<const float*>(chroma->data());
+    const std::string& oiio_cs = spec.colorspace;
+    if (spec.has_chromaticities) {
+      const float* c = spec.chromaticities.data();
       if (near_chromaticities(c, kRec709)) m.color_space = "lin_rec709";
       else if (near_chromaticities(c, kAP0)) m.color_space = "ACES2065-1";
       else if (near_chromaticities(c, kAP1)) m.color_space = "ACEScg";

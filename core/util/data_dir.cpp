@@ -35,7 +35,8 @@ std::string env(const char* name) {
 
 }  // namespace
 
-DataLocations locate_data(const std::string& data_env, const std::string& results_env, const std::string& executable) {
+DataLocations locate_data(const std::string& data_env, const std::string& results_env, const std::string& executable,
+                          int depth) {
   DataLocations out;
   const bool in_build_tree =
       !executable.empty() && is_inside(fs::path(executable).parent_path(), GLINTLAB_BUILD_BINARY_DIR);
@@ -46,8 +47,12 @@ DataLocations locate_data(const std::string& data_env, const std::string& result
     out.data = GLINTLAB_BUILD_SOURCE_DIR;
     out.why = "the source tree of the build folder " GLINTLAB_BUILD_BINARY_DIR ", where this program is";
   } else if (!executable.empty()) {
-    out.data = (fs::path(executable).parent_path().parent_path() / "share" / "glintlab").lexically_normal().string();
-    out.why = "../share/glintlab beside the executable " + executable;
+    fs::path prefix = fs::path(executable);
+    std::string up;
+    for (int i = 0; i < depth; ++i) up += "../";
+    for (int i = 0; i <= depth; ++i) prefix = prefix.parent_path();
+    out.data = (prefix / "share" / "glintlab").lexically_normal().string();
+    out.why = up + "share/glintlab beside " + (depth == 1 ? "the executable " : "") + executable;
   } else {
     out.data = "share/glintlab";
     out.why = "/proc/self/exe is unreadable, so the folder beside the executable is unknown";
@@ -72,8 +77,23 @@ std::string data_dir_problem(const DataLocations& where) {
   return "";
 }
 
+namespace {
+std::string& anchor_file() {
+  static std::string file;
+  return file;
+}
+int anchor_depth = 1;
+}  // namespace
+
+void set_data_anchor(const std::string& file, int depth) {
+  anchor_file() = file;
+  anchor_depth = depth;
+}
+
 const DataLocations& data_locations() {
   static const DataLocations locations = [] {
+    if (!anchor_file().empty())
+      return locate_data(env("GLINTLAB_DATA_DIR"), env("GLINTLAB_RESULTS_DIR"), anchor_file(), anchor_depth);
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     return locate_data(env("GLINTLAB_DATA_DIR"), env("GLINTLAB_RESULTS_DIR"), ec ? std::string() : exe.string());

@@ -6,7 +6,8 @@
 //   - $GLINTLAB_DATA_DIR when set and not empty;
 //   - the source tree, for a program inside the build folder it was built in;
 //   - <the executable's folder>/../share/glintlab otherwise: where `cmake --install` and the Debian
-//     package put it (bin/glintlab beside share/glintlab/).
+//     package put it (bin/glintlab beside share/glintlab/); for the Python module, share/glintlab of
+//     the prefix it is installed in (set_data_anchor).
 // The default output folder (`--out`, `--cache`, `--study`) is $GLINTLAB_RESULTS_DIR when set and not
 // empty, the source tree's results/ for a program in the build folder, else results/ in the current
 // folder. The executable's path is /proc/self/exe.
@@ -24,8 +25,15 @@ struct DataLocations {
 };
 
 // The locations for a program at `executable` with the two variables set to `data_env` and
-// `results_env` ("" for unset).
-DataLocations locate_data(const std::string& data_env, const std::string& results_env, const std::string& executable);
+// `results_env` ("" for unset); `executable` lies `depth` folders below the installation prefix
+// (bin/glintlab: 1), whose share/glintlab is the data folder.
+DataLocations locate_data(const std::string& data_env, const std::string& results_env, const std::string& executable,
+                          int depth = 1);
+
+// For code loaded into another program (the Python module): the file it was loaded from and its
+// depth below the prefix (lib/python3/dist-packages/glintlab/_core.so: 4) take the place of
+// /proc/self/exe. Call before the first data_locations().
+void set_data_anchor(const std::string& file, int depth);
 
 // "" when `where.data` holds the files glintlab reads, else an error that names the folder, why it
 // was chosen, the missing file and GLINTLAB_DATA_DIR.

@@ -17,6 +17,7 @@
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/measure/exr_scanlines.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/color/image_io.h"
 #include "metrics/color/measurement_space.h"
@@ -37,14 +38,6 @@ std::string num_str(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
-}
-
-// First channel of a per-pixel map (maps are single-channel by convention).
-Image first_channel(const Image& map) {
-  if (map.channels == 1) return map;
-  Image one(map.width, map.height, 1);
-  for (std::size_t i = 0; i < one.pixel_count(); ++i) one.data[i] = map.data[i * map.channels];
-  return one;
 }
 
 // Per pixel: true where any of the first three channels is NaN, infinite or negative.
@@ -89,35 +82,7 @@ std::string csv_field(const std::string& s) {  // RFC 4180 quoting where needed
   return q + "\"";
 }
 
-struct Input {
-  std::string path;
-  Image xyz;
-  metrics::PixelScan scan;
-  std::vector<bool> bad;          // per pixel, for the map
-  std::size_t converted_bad = 0;  // non-finite values the colour conversion produced from finite input
-};
-
-struct Evaluated {
-  metrics::MetricResult result;
-  metrics::FlipPooled pooled;  // flip only
-  bool is_flip = false;
-};
-
-struct TestResult {
-  const Input* test = nullptr;
-  std::vector<Evaluated> metrics;
-  bool clean = true;
-  bool threshold_exceeded = false;
-};
-
-struct FlipSetup {
-  bool hdr = true;
-  double ppd = metrics::kFlipDefaultPpd;
-  metrics::HdrFlipOptions hdr_options;
-  metrics::HdrFlipExposures exposures;  // resolved from the reference (HDR)
-};
-
-nlohmann::json flip_settings_json(const FlipSetup& f) {
+nlohmann::json flip_settings_json(const CompareFlipSetup& f) {
   nlohmann::json j = {{"mode", f.hdr ? "hdr" : "ldr"}, {"ppd", f.ppd}};
   if (f.hdr) {
     j["tone_mapper"] = enum_name(metrics::kFlipToneMapperNames, f.hdr_options.tone_mapper);
@@ -128,7 +93,7 @@ nlohmann::json flip_settings_json(const FlipSetup& f) {
   return j;
 }
 
-std::string flip_settings_text(const FlipSetup& f) {
+std::string flip_settings_text(const CompareFlipSetup& f) {
   std::ostringstream s;
   s << (f.hdr ? "HDR-FLIP" : "LDR-FLIP") << ", " << f.ppd << " px/deg";
   if (f.hdr)
@@ -137,10 +102,10 @@ std::string flip_settings_text(const FlipSetup& f) {
   return s.str();
 }
 
-nlohmann::json metrics_json(const TestResult& t) {
+nlohmann::json metrics_json(const CompareTest& t) {
   nlohmann::json j = nlohmann::json::object();
-  for (const Evaluated& e : t.metrics) {
-    nlohmann::json m = {{"mean", num_json(e.result.mean)}, {"max", num_json(e.result.max)}};
+  for (const CompareMetric& e : t.metrics) {
+    nlohmann::json m = {{"mean", num_json(e.result.mean)}, {"max", num_json(e.result.max)}, {"p95", num_json(e.p95)}};
     if (e.is_flip) {
       m["min"] = num_json(e.pooled.min);
       m["weighted_median"] = num_json(e.pooled.weighted_median);
@@ -152,11 +117,11 @@ nlohmann::json metrics_json(const TestResult& t) {
   return j;
 }
 
-void print_text(const TestResult& t, const Input& ref, const FlipSetup& flip, const std::string& indent,
+void print_text(const CompareTest& t, const CompareInput& ref, const CompareFlipSetup& flip, const std::string& indent,
                 std::ostream& out) {
-  if (!t.test->scan.clean()) out << indent << "input test '" << t.test->path << "': " << scan_text(t.test->scan) << "\n";
+  if (!t.input.scan.clean()) out << indent << "input test '" << t.input.path << "': " << scan_text(t.input.scan) << "\n";
   if (!ref.scan.clean()) out << indent << "input ref '" << ref.path << "': " << scan_text(ref.scan) << "\n";
-  for (const Evaluated& e : t.metrics) {
+  for (const CompareMetric& e : t.metrics) {
     const metrics::MetricResult& r = e.result;
     out << indent << r.name << ": mean " << r.mean << " " << r.unit << ", max " << r.max << " " << r.unit << "\n";
     if (e.is_flip) {
@@ -168,21 +133,21 @@ void print_text(const TestResult& t, const Input& ref, const FlipSetup& flip, co
   }
 }
 
-std::string csv_table(const std::vector<TestResult>& results, const Input& ref) {
+std::string csv_table(const std::vector<CompareTest>& results, const CompareInput& ref) {
   std::ostringstream s;
   s << "reference,test,metric,unit,mean,max,min,weighted_median,weighted_quartile_1,weighted_quartile_3,"
        "test_nan,test_inf,test_negative,ref_nan,ref_inf,ref_negative\n";
-  for (const TestResult& t : results)
-    for (const Evaluated& e : t.metrics) {
+  for (const CompareTest& t : results)
+    for (const CompareMetric& e : t.metrics) {
       const metrics::MetricResult& r = e.result;
-      s << csv_field(ref.path) << "," << csv_field(t.test->path) << "," << csv_field(r.name) << "," << csv_field(r.unit)
+      s << csv_field(ref.path) << "," << csv_field(t.input.path) << "," << csv_field(r.name) << "," << csv_field(r.unit)
         << "," << csv_num(r.mean) << "," << csv_num(r.max) << ",";
       if (e.is_flip)
         s << csv_num(e.pooled.min) << "," << csv_num(e.pooled.weighted_median) << ","
           << csv_num(e.pooled.weighted_quartile_1) << "," << csv_num(e.pooled.weighted_quartile_3) << ",";
       else
         s << ",,,,";
-      s << t.test->scan.nan << "," << t.test->scan.infinite << "," << t.test->scan.negative << "," << ref.scan.nan << ","
+      s << t.input.scan.nan << "," << t.input.scan.infinite << "," << t.input.scan.negative << "," << ref.scan.nan << ","
         << ref.scan.infinite << "," << ref.scan.negative << "\n";
     }
   return s.str();
@@ -196,47 +161,42 @@ std::string check_positive(double v, const char* option, const char* what) {
 
 }  // namespace
 
-int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
-  auto bad_input = [&](const std::string& msg) {
-    err << "compare: " << msg << "\n";
-    return int(kExitBadInput);
-  };
+Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image, const std::vector<CompareImage>& test_images,
+                          std::ostream& err) {
+  auto bad_input = [](const std::string& msg) { return std::invalid_argument(msg); };
 
-  // ---- options (bad input -> 2)
-  std::vector<std::string> test_paths;
-  if (!o.test.empty()) test_paths.push_back(o.test);
-  for (const auto& t : o.tests) test_paths.push_back(t);
-  if (test_paths.empty() || o.ref.empty())
-    return bad_input("need a test image and a reference: `compare TEST REF` or `compare --reference REF --test TEST "
-                     "[TEST ...]`");
-  for (const auto& t : test_paths)
-    if (t.empty()) return bad_input("empty test image path");
+  // ---- options (bad input)
+  if (test_images.empty() || (ref_image.path.empty() && !ref_image.pixels))
+    throw bad_input("need a test image and a reference: `compare TEST REF` or `compare --reference REF --test TEST "
+                    "[TEST ...]`");
+  for (const CompareImage& t : test_images)
+    if (t.path.empty() && !t.pixels) throw bad_input("empty test image path");
 
   std::vector<std::string> names = o.metrics.empty() ? metrics::metric_names() : o.metrics;
   const std::vector<std::string> known = metrics::metric_names();
   for (const auto& n : names)
     if (std::find(known.begin(), known.end(), n) == known.end())
-      return bad_input("unknown metric '" + n + "'; allowed: " + join(known));
-  if (names.empty()) return bad_input("no metrics registered");
+      throw bad_input("unknown metric '" + n + "'; allowed: " + join(known));
+  if (names.empty()) throw bad_input("no metrics registered");
   if (!(o.itp_nits > 0.0) || !std::isfinite(o.itp_nits))
-    return bad_input("--itp-nits must be a positive number of cd/m^2, got " + num_str(o.itp_nits));
-  if (!o.map_path.empty() && test_paths.size() > 1)
-    return bad_input("--map writes one map: give it with one test image (got " + std::to_string(test_paths.size()) +
-                     ")");
-  const bool want_flip = std::find(names.begin(), names.end(), "flip") != names.end();
+    throw bad_input("--itp-nits must be a positive number of cd/m^2, got " + num_str(o.itp_nits));
+  Comparison c;
+  c.want_flip = std::find(names.begin(), names.end(), "flip") != names.end();
+  c.threshold = o.threshold;
+  const bool want_flip = c.want_flip;
 
-  FlipSetup flip;
+  CompareFlipSetup& flip = c.flip;
   flip.hdr = !o.flip_ldr;
   for (const std::string& m : {check_positive(o.ppd, "--ppd", "pixels per degree"),
                                check_positive(o.monitor_distance, "--monitor-distance", "metres"),
                                check_positive(o.monitor_width, "--monitor-width", "metres"),
                                check_positive(o.monitor_width_pixels, "--monitor-width-pixels", "pixels")})
-    if (!m.empty()) return bad_input(m);
+    if (!m.empty()) throw bad_input(m);
   const bool viewing = !std::isnan(o.monitor_distance) || !std::isnan(o.monitor_width) ||
                        !std::isnan(o.monitor_width_pixels);
   if (!std::isnan(o.ppd) && viewing)
-    return bad_input("--ppd and --monitor-distance/--monitor-width/--monitor-width-pixels both set the pixels per "
-                     "degree: give one or the other");
+    throw bad_input("--ppd and --monitor-distance/--monitor-width/--monitor-width-pixels both set the pixels per "
+                    "degree: give one or the other");
   flip.ppd = !std::isnan(o.ppd) ? o.ppd
                                 : metrics::flip_pixels_per_degree(
                                       std::isnan(o.monitor_distance) ? metrics::kFlipDefaultMonitorDistance : o.monitor_distance,
@@ -244,36 +204,36 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
                                       std::isnan(o.monitor_width_pixels) ? metrics::kFlipDefaultMonitorWidthPixels
                                                                          : o.monitor_width_pixels);
   if (!(flip.ppd <= metrics::kFlipMaxPpd))
-    return bad_input((!std::isnan(o.ppd) ? std::string("--ppd") : std::string("--monitor-distance/--monitor-width/--monitor-width-pixels")) +
-                     " give " + num_str(flip.ppd) + " pixels per degree; allowed: up to " + num_str(metrics::kFlipMaxPpd));
+    throw bad_input((!std::isnan(o.ppd) ? std::string("--ppd") : std::string("--monitor-distance/--monitor-width/--monitor-width-pixels")) +
+                    " give " + num_str(flip.ppd) + " pixels per degree; allowed: up to " + num_str(metrics::kFlipMaxPpd));
   if (!o.tone_mapper.empty()) {
     std::string tm = o.tone_mapper;
-    std::transform(tm.begin(), tm.end(), tm.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(tm.begin(), tm.end(), tm.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
     const auto v = enum_from_name(metrics::kFlipToneMapperNames, tm);
     if (!v)
-      return bad_input("--tone-mapper must be one of " + enum_name_list(metrics::kFlipToneMapperNames) +
-                       " (any case), got '" + o.tone_mapper + "'");
+      throw bad_input("--tone-mapper must be one of " + enum_name_list(metrics::kFlipToneMapperNames) +
+                      " (any case), got '" + o.tone_mapper + "'");
     flip.hdr_options.tone_mapper = *v;
   }
-  if (std::isinf(o.start_exposure)) return bad_input("--start-exposure must be a finite number of stops");
-  if (std::isinf(o.stop_exposure)) return bad_input("--stop-exposure must be a finite number of stops");
+  if (std::isinf(o.start_exposure)) throw bad_input("--start-exposure must be a finite number of stops");
+  if (std::isinf(o.stop_exposure)) throw bad_input("--stop-exposure must be a finite number of stops");
   if (o.num_exposures < 0)
-    return bad_input("--num-exposures must be an integer >= 1, got " + std::to_string(o.num_exposures));
+    throw bad_input("--num-exposures must be an integer >= 1, got " + std::to_string(o.num_exposures));
   if (!std::isnan(o.start_exposure) && !std::isnan(o.stop_exposure) && o.start_exposure > o.stop_exposure)
-    return bad_input("--start-exposure (" + num_str(o.start_exposure) + ") must not be above --stop-exposure (" +
-                     num_str(o.stop_exposure) + ")");
+    throw bad_input("--start-exposure (" + num_str(o.start_exposure) + ") must not be above --stop-exposure (" +
+                    num_str(o.stop_exposure) + ")");
   flip.hdr_options.start_exposure = o.start_exposure;
   flip.hdr_options.stop_exposure = o.stop_exposure;
   flip.hdr_options.num_exposures = o.num_exposures;
   const bool hdr_options_given = !o.tone_mapper.empty() || !std::isnan(o.start_exposure) ||
                                  !std::isnan(o.stop_exposure) || o.num_exposures != 0;
   if (o.flip_ldr && hdr_options_given)
-    return bad_input("--tone-mapper, --start-exposure, --stop-exposure and --num-exposures are HDR-FLIP settings; "
-                     "they do not go with --flip-ldr");
+    throw bad_input("--tone-mapper, --start-exposure, --stop-exposure and --num-exposures are HDR-FLIP settings; "
+                    "they do not go with --flip-ldr");
   if (!std::isnan(o.threshold) && !(o.threshold >= 0.0 && o.threshold <= 1.0))
-    return bad_input("--threshold must be a number in [0, 1] (a mean FLIP error), got " + num_str(o.threshold));
+    throw bad_input("--threshold must be a number in [0, 1] (a mean FLIP error), got " + num_str(o.threshold));
   if (!std::isnan(o.threshold) && !want_flip)
-    return bad_input("--threshold tests the mean FLIP error, but --metric leaves out flip; add --metric flip");
+    throw bad_input("--threshold tests the mean FLIP error, but --metric leaves out flip; add --metric flip");
   if (!want_flip && (hdr_options_given || o.flip_ldr || !std::isnan(o.ppd) || viewing))
     err << "compare: warning: FLIP options given, but --metric leaves out flip; they are ignored\n";
 
@@ -283,34 +243,36 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
   mo.flip_hdr = flip.hdr;
   mo.flip_ppd = flip.ppd;
 
-  // ---- inputs (bad input -> 2): every file is read and checked before anything is computed
-  std::unique_ptr<metrics::ColorManager> cm;
-  Input ref;
-  std::vector<Input> tests(test_paths.size());
+  // ---- inputs (bad input): every image is read and checked before anything is computed
+  CompareInput& ref = c.ref;
+  c.tests.resize(test_images.size());
   try {
     if (!o.display_view.empty()) (void)metrics::parse_display_view(o.display_view);
-    cm = std::make_unique<metrics::ColorManager>(o.ocio_config.empty() ? metrics::ColorManager::default_config_path()
-                                                                        : o.ocio_config);
-    if (!o.space.empty()) (void)cm->canonical_name(o.space);  // unknown --space: error before reading
-    auto load = [&](Input& in, const std::string& path, const std::string& what) {
-      std::string tag;
-      int channels = 0;
-      in.path = path;
-      const Image img = metrics::read_image(path, &tag, &channels);
+    const metrics::ColorManager cm(o.ocio_config.empty() ? metrics::ColorManager::default_config_path()
+                                                         : o.ocio_config);
+    if (!o.space.empty()) (void)cm.canonical_name(o.space);  // unknown --space: error before reading
+    auto load = [&](CompareInput& in, const CompareImage& source, const std::string& what) {
+      std::string tag = source.tag;
+      int channels = source.channels;
+      in.path = source.path;
+      Image read;
+      if (!source.pixels) read = read_image_file(source.path, &tag, &channels);
+      const Image& img = source.pixels ? *source.pixels : read;
       if (channels < 3)  // said, never silent: what the file's channels are taken for
-        err << "compare: " << what << " '" << path << "' has " << channels << " channel" << (channels == 1 ? "" : "s")
+        err << "compare: " << what << " '" << in.path << "' has " << channels << " channel" << (channels == 1 ? "" : "s")
             << ": read as grey" << (channels == 2 ? " (the first) and alpha (the second)" : "") << "\n";
       in.scan = metrics::scan_pixels(img, 3);
       in.bad = bad_pixels(img);
-      in.xyz = metrics::metric_xyz(*cm, img, metrics::input_space(*cm, o.space, tag, "compare: " + what, path, err), mo);
+      in.xyz = metrics::metric_xyz(cm, img, metrics::input_space(cm, o.space, tag, "compare: " + what, in.path, err), mo);
       if (in.scan.nan + in.scan.infinite == 0) in.converted_bad = nonfinite_pixels(in.xyz);
     };
-    load(ref, o.ref, "reference");
-    for (std::size_t i = 0; i < tests.size(); ++i) {
-      load(tests[i], test_paths[i], "test");
-      if (!tests[i].xyz.same_size(ref.xyz))
-        return bad_input("image sizes differ: test '" + tests[i].path + "' is " + size_str(tests[i].xyz) +
-                         ", reference '" + ref.path + "' is " + size_str(ref.xyz));
+    load(ref, ref_image, "reference");
+    for (std::size_t i = 0; i < c.tests.size(); ++i) {
+      CompareInput& t = c.tests[i].input;
+      load(t, test_images[i], "test");
+      if (!t.xyz.same_size(ref.xyz))
+        throw bad_input("image sizes differ: test '" + t.path + "' is " + size_str(t.xyz) + ", reference '" +
+                        ref.path + "' is " + size_str(ref.xyz));
     }
     if (want_flip && flip.hdr) {
       // One exposure given, the other from the reference: they must still be in order.
@@ -318,135 +280,167 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
       if (start_given != stop_given) {
         const metrics::HdrFlipExposures a = metrics::hdr_flip_exposures(ref.xyz, flip.hdr_options.tone_mapper);
         if (start_given && o.start_exposure > a.stop)
-          return bad_input("--start-exposure (" + num_str(o.start_exposure) + ") is above the stop exposure " +
-                           num_str(a.stop) + " computed from the reference '" + ref.path + "'; give --stop-exposure too");
+          throw bad_input("--start-exposure (" + num_str(o.start_exposure) + ") is above the stop exposure " +
+                          num_str(a.stop) + " computed from the reference '" + ref.path + "'; give --stop-exposure too");
         if (stop_given && o.stop_exposure < a.start)
-          return bad_input("--stop-exposure (" + num_str(o.stop_exposure) + ") is below the start exposure " +
-                           num_str(a.start) + " computed from the reference '" + ref.path +
-                           "'; give --start-exposure too");
+          throw bad_input("--stop-exposure (" + num_str(o.stop_exposure) + ") is below the start exposure " +
+                          num_str(a.start) + " computed from the reference '" + ref.path +
+                          "'; give --start-exposure too");
       }
       flip.exposures = metrics::resolve_hdr_flip_exposures(ref.xyz, flip.hdr_options);
     }
   } catch (const IoError&) {
-    throw;  // the system's reason: exit 4
+    throw;  // the system's reason
+  } catch (const std::invalid_argument&) {
+    throw;
   } catch (const std::exception& e) {
-    return bad_input(e.what());
+    throw bad_input(e.what());
   }
 
   // ---- bad pixels: reported on err; the metrics of that comparison become NaN (compare.h)
-  auto report = [&](const Input& in, const char* what) {
+  auto report = [&](const CompareInput& in, const char* what) {
     if (!in.scan.clean())
       err << "compare: " << what << " '" << in.path << "' has " << scan_text(in.scan) << "\n";
     if (in.converted_bad)
       err << "compare: " << what << " '" << in.path << "' gives " << in.converted_bad
           << " non-finite pixels after colour conversion\n";
   };
-  auto clean = [](const Input& in) { return in.scan.clean() && in.converted_bad == 0; };
+  auto clean = [](const CompareInput& in) { return in.scan.clean() && in.converted_bad == 0; };
   report(ref, "reference");
-  for (const Input& t : tests) report(t, "test");
+  for (const CompareTest& t : c.tests) report(t.input, "test");
 
   // ---- metrics (HDR-FLIP: the exposures resolved once, from the reference, for every test image)
   metrics::HdrFlipOptions resolved = flip.hdr_options;
   resolved.start_exposure = flip.exposures.start;
   resolved.stop_exposure = flip.exposures.stop;
   resolved.num_exposures = flip.exposures.count;
-  std::vector<TestResult> results(tests.size());
-  try {
-    for (std::size_t i = 0; i < tests.size(); ++i) {
-      TestResult& tr = results[i];
-      tr.test = &tests[i];
-      tr.clean = clean(tests[i]) && clean(ref);
-      for (const auto& n : names) {
-        Evaluated e;
-        if (n == "flip") {
-          e.is_flip = true;
-          e.result.name = n;
-          e.result.unit = "FLIP";
-          e.result.map = flip.hdr ? metrics::hdr_flip_map(tests[i].xyz, ref.xyz, flip.ppd, resolved)
-                                  : metrics::ldr_flip_map(tests[i].xyz, ref.xyz, flip.ppd);
-          e.pooled = metrics::flip_pooled(e.result.map);
-          e.result.mean = e.pooled.mean;
-          e.result.max = e.pooled.max;
-        } else {
-          e.result = metrics::evaluate_metric(n, tests[i].xyz, ref.xyz, mo);
-        }
-        if (!tr.clean) {
-          e.result.mean = e.result.max = kNaN;
-          e.pooled.mean = e.pooled.weighted_median = e.pooled.weighted_quartile_1 = e.pooled.weighted_quartile_3 =
-              e.pooled.min = e.pooled.max = kNaN;
-        }
-        if (e.is_flip && !std::isnan(o.threshold) && e.result.mean > o.threshold) tr.threshold_exceeded = true;
-        tr.metrics.push_back(std::move(e));
+  for (CompareTest& tr : c.tests) {
+    const CompareInput& test = tr.input;
+    tr.clean = clean(test) && clean(ref);
+    for (const auto& n : names) {
+      CompareMetric e;
+      if (n == "flip") {
+        e.is_flip = true;
+        e.result.name = n;
+        e.result.unit = "FLIP";
+        e.result.map = flip.hdr ? metrics::hdr_flip_map(test.xyz, ref.xyz, flip.ppd, resolved)
+                                : metrics::ldr_flip_map(test.xyz, ref.xyz, flip.ppd);
+        e.pooled = metrics::flip_pooled(e.result.map);
+        e.result.mean = e.pooled.mean;
+        e.result.max = e.pooled.max;
+      } else {
+        e.result = metrics::evaluate_metric(n, test.xyz, ref.xyz, mo);
       }
-      if (!tr.clean)
-        err << "compare: test '" << tests[i].path << "' against '" << ref.path
-            << "': NaN, Inf or negative input pixels, so every metric is NaN\n";
-      if (tr.threshold_exceeded) {
-        const double m = std::find_if(tr.metrics.begin(), tr.metrics.end(), [](const Evaluated& e) {
-                           return e.is_flip;
-                         })->result.mean;
-        err << "compare: mean FLIP error of '" << tests[i].path << "' is " << m << ", above --threshold "
-            << o.threshold << "\n";
+      if (n != "psnr") e.p95 = metrics::map_percentile(e.result.map, 0.95);
+      if (!tr.clean) {
+        e.result.mean = e.result.max = e.p95 = kNaN;
+        e.pooled.mean = e.pooled.weighted_median = e.pooled.weighted_quartile_1 = e.pooled.weighted_quartile_3 =
+            e.pooled.min = e.pooled.max = kNaN;
       }
+      if (e.is_flip && !std::isnan(o.threshold) && e.result.mean > o.threshold) tr.threshold_exceeded = true;
+      tr.metrics.push_back(std::move(e));
     }
+    if (!tr.clean)
+      err << "compare: test '" << test.path << "' against '" << ref.path
+          << "': NaN, Inf or negative input pixels, so every metric is NaN\n";
+    if (tr.threshold_exceeded) {
+      const double m = std::find_if(tr.metrics.begin(), tr.metrics.end(), [](const CompareMetric& e) {
+                         return e.is_flip;
+                       })->result.mean;
+      err << "compare: mean FLIP error of '" << test.path << "' is " << m << ", above --threshold " << o.threshold
+          << "\n";
+    }
+  }
+  return c;
+}
+
+nlohmann::json comparison_json(const Comparison& c) {
+  nlohmann::json j;
+  auto test_json = [&](const CompareTest& t, nlohmann::json& into) {
+    into["test"] = t.input.path;
+    into["metrics"] = metrics_json(t);
+    into["input"] = {{"test", scan_json(t.input.scan)}, {"ref", scan_json(c.ref.scan)}};
+    if (!std::isnan(c.threshold)) into["threshold_exceeded"] = t.threshold_exceeded;
+  };
+  j["reference"] = c.ref.path;
+  if (c.want_flip) j["flip"] = flip_settings_json(c.flip);
+  if (c.tests.size() == 1) {
+    test_json(c.tests.front(), j);
+  } else {
+    j["tests"] = nlohmann::json::array();
+    for (const CompareTest& t : c.tests) {
+      nlohmann::json tj;
+      test_json(t, tj);
+      j["tests"].push_back(tj);
+    }
+  }
+  return j;
+}
+
+Image comparison_map(const Comparison& c, std::size_t test, std::size_t metric) {
+  const CompareTest& t = c.tests.at(test);
+  const Image& full = t.metrics.at(metric).result.map;
+  if (full.empty()) return {};
+  Image map = Image::unfilled(full.width, full.height, 1);
+  for (std::size_t p = 0; p < map.pixel_count(); ++p)
+    map.data[p] = (t.input.bad[p] || c.ref.bad[p]) ? std::numeric_limits<float>::quiet_NaN()
+                                                   : full.data[p * std::size_t(full.channels)];
+  return map;
+}
+
+int comparison_exit_code(const Comparison& c) {
+  for (const CompareTest& t : c.tests)
+    if (!t.clean || t.threshold_exceeded) return kExitDefect;
+  return kExitOk;
+}
+
+int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
+  auto bad_input = [&](const std::string& msg) {
+    err << "compare: " << msg << "\n";
+    return int(kExitBadInput);
+  };
+  std::vector<CompareImage> tests;
+  if (!o.test.empty()) tests.push_back({o.test, nullptr, 4, ""});
+  for (const auto& t : o.tests) tests.push_back({t, nullptr, 4, ""});
+  if (!o.map_path.empty() && tests.size() > 1)
+    return bad_input("--map writes one map: give it with one test image (got " + std::to_string(tests.size()) + ")");
+  Comparison c;
+  try {
+    c = compare_images(o, {o.ref, nullptr, 4, ""}, tests, err);
+  } catch (const IoError&) {
+    throw;  // the system's reason: exit 4
   } catch (const std::invalid_argument& e) {
     return bad_input(e.what());
   }
 
   // ---- output
-  const bool single = results.size() == 1;
   if (o.json) {
-    nlohmann::json j;
-    auto test_json = [&](const TestResult& t, nlohmann::json& into) {
-      into["test"] = t.test->path;
-      into["metrics"] = metrics_json(t);
-      into["input"] = {{"test", scan_json(t.test->scan)}, {"ref", scan_json(ref.scan)}};
-      if (!std::isnan(o.threshold)) into["threshold_exceeded"] = t.threshold_exceeded;
-    };
-    j["reference"] = ref.path;
-    if (want_flip) j["flip"] = flip_settings_json(flip);
-    if (single) {
-      test_json(results.front(), j);
-    } else {
-      j["tests"] = nlohmann::json::array();
-      for (const TestResult& t : results) {
-        nlohmann::json tj;
-        test_json(t, tj);
-        j["tests"].push_back(tj);
-      }
-    }
-    out << dump_json(j, 2) << "\n";
+    out << dump_json(comparison_json(c), 2) << "\n";
   } else {
-    for (const TestResult& t : results) {
-      if (!single) out << "test '" << t.test->path << "':\n";
-      print_text(t, ref, flip, single ? "" : "  ", out);
+    const bool single = c.tests.size() == 1;
+    for (const CompareTest& t : c.tests) {
+      if (!single) out << "test '" << t.input.path << "':\n";
+      print_text(t, c.ref, c.flip, single ? "" : "  ", out);
     }
   }
 
   // ---- files (I/O failure -> 4)
   try {
-    if (!o.csv_path.empty()) write_text_atomic(o.csv_path, csv_table(results, ref));
+    if (!o.csv_path.empty()) write_text_atomic(o.csv_path, csv_table(c.tests, c.ref));
     if (!o.map_path.empty()) {
-      const Evaluated& first = results.front().metrics.front();
+      const CompareMetric& first = c.tests.front().metrics.front();
       if (first.result.map.empty()) {
         err << "compare: metric '" << first.result.name << "' has no per-pixel map; --map needs one (put a per-pixel "
             << "metric first with --metric)\n";
         return kExitBadInput;
       }
-      Image map = first_channel(first.result.map);
-      const Input& t = *results.front().test;
-      for (std::size_t p = 0; p < map.pixel_count(); ++p)
-        if (t.bad[p] || ref.bad[p]) map.data[p] = std::numeric_limits<float>::quiet_NaN();
-      metrics::write_exr_data(o.map_path, map);
+      metrics::write_exr_data(o.map_path, comparison_map(c, 0, 0));
     }
   } catch (const std::exception& e) {
     err << "compare: " << e.what() << "\n";
     return kExitIo;
   }
-
-  for (const TestResult& t : results)
-    if (!t.clean || t.threshold_exceeded) return kExitDefect;
-  return kExitOk;
+  return comparison_exit_code(c);
 }
 
 }  // namespace glintlab

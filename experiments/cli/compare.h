@@ -33,12 +33,13 @@
 // and its settings (LDR/HDR, px/deg, tone mapper, exposures). With several test images each block
 // starts with "test 'FILE':" and its lines are indented.
 // JSON (--json): with one test image
-//   {"test": T, "reference": R, "metrics": {"<name>": {"mean": x, "max": y}, ...,
+//   {"test": T, "reference": R, "metrics": {"<name>": {"mean": x, "max": y, "p95": z}, ...,
 //    "flip": {"mean", "max", "min", "weighted_median", "weighted_quartile_1", "weighted_quartile_3"}},
 //    "input": {"test": COUNTS, "ref": COUNTS}, "flip": SETTINGS, "threshold_exceeded": bool}
 //   with COUNTS = {"pixels": n, "nan": n, "inf": n, "negative": n}, SETTINGS = {"mode": "hdr"|"ldr",
 //   "ppd", "tone_mapper", "start_exposure", "stop_exposure", "num_exposures"} (the last four for HDR;
-//   "flip" only when the flip metric ran, "threshold_exceeded" only with --threshold). With several
+//   "flip" only when the flip metric ran, "threshold_exceeded" only with --threshold; "p95" the
+//   nearest-rank 95th percentile of the metric's per-pixel map, null for psnr). With several
 //   test images: {"reference": R, "flip": SETTINGS, "tests": [{"test", "metrics", "input",
 //   "threshold_exceeded"}, ...]}. A value that is not finite is null.
 // CSV (--csv, written whole, atomically): header
@@ -63,9 +64,19 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/util/image.h"
+#include "metrics/flip.h"
+#include "metrics/flip_pooling.h"
+#include "metrics/metric_registry.h"
+#include "metrics/pixel_scan.h"
 
 namespace glintlab {
 
@@ -95,6 +106,69 @@ struct CompareOptions {
   double stop_exposure = NAN;         // NaN = from the reference
   int num_exposures = 0;              // 0 = max(2, ceil(stop - start)); >= 1 otherwise
 };
+
+// One image of a comparison: a file, or pixels already decoded (the Python module's arrays).
+struct CompareImage {
+  std::string path;                     // the file; with `pixels`, the name messages and the JSON give it
+  std::shared_ptr<const Image> pixels;  // RGBA, as metrics::read_image returns a file's; null: read `path`
+  int channels = 4;                     // the channels the pixels had (read_image's file_channels)
+  std::string tag;                      // their colour-space tag, "" for none (read_image's colorspace_tag)
+};
+
+// An input as compared: in CIE XYZ D65, with its scan (before any colour conversion).
+struct CompareInput {
+  std::string path;
+  Image xyz;
+  metrics::PixelScan scan;
+  std::vector<bool> bad;          // per pixel: NaN, Inf or negative in a colour channel
+  std::size_t converted_bad = 0;  // non-finite values the colour conversion produced from finite input
+};
+
+struct CompareMetric {
+  metrics::MetricResult result;  // mean, max and the per-pixel map (NaN when the comparison is not clean)
+  double p95 = NAN;              // nearest-rank 95th percentile of the map; NaN for psnr (its map is a squared error)
+  metrics::FlipPooled pooled;    // flip only
+  bool is_flip = false;
+};
+
+struct CompareTest {
+  CompareInput input;
+  std::vector<CompareMetric> metrics;  // in the order of the options' metrics
+  bool clean = true;                   // no bad pixel in the test or the reference
+  bool threshold_exceeded = false;
+};
+
+struct CompareFlipSetup {
+  bool hdr = true;
+  double ppd = metrics::kFlipDefaultPpd;
+  metrics::HdrFlipOptions hdr_options;
+  metrics::HdrFlipExposures exposures;  // resolved from the reference (HDR)
+};
+
+struct Comparison {
+  CompareInput ref;
+  std::vector<CompareTest> tests;
+  CompareFlipSetup flip;
+  bool want_flip = false;
+  double threshold = NAN;
+};
+
+// Checks the options (the fields that are not about output: test, tests, ref, map_path, json and
+// csv_path are ignored), reads every input and checks it before anything is computed, then evaluates
+// every metric. Bad input (what `compare` exits 2 for) throws std::invalid_argument with the message
+// the command prints after "compare: "; a file that cannot be read for the system's reason throws
+// IoError. Warnings and the bad-pixel messages go to `err`.
+Comparison compare_images(const CompareOptions& options, const CompareImage& ref, const std::vector<CompareImage>& tests,
+                          std::ostream& err);
+
+// What --json prints (above).
+nlohmann::json comparison_json(const Comparison& c);
+
+// Metric `metric` of test `test` as --map writes it: its first channel, NaN at every bad pixel.
+Image comparison_map(const Comparison& c, std::size_t test, std::size_t metric);
+
+// 1 when any test is not clean or is above the threshold, else 0.
+int comparison_exit_code(const Comparison& c);
 
 // Runs the comparison; results on `out`, diagnostics on `err`. Returns the exit code (above).
 int run_compare(const CompareOptions& options, std::ostream& out, std::ostream& err);

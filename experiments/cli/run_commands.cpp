@@ -16,7 +16,7 @@ namespace glintlab {
 
 namespace {
 
-// "WxH" -> (W, H); "k/n" -> (k - 1, n).
+// "k/n" -> (k, n).
 bool parse_pair(const std::string& s, const char* sep, int& a, int& b) {
   std::smatch m;
   if (!std::regex_match(s, m, std::regex(std::string("([0-9]{1,5})") + sep + "([0-9]{1,5})"))) return false;
@@ -52,11 +52,11 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     return [=]() {
       opt->measure = measure;
       opt->report = !*no_report;
-      if (!resolution->empty() && (!parse_pair(*resolution, "x", opt->width, opt->height) || opt->width < 1 ||
-                                   opt->height < 1 || opt->width > 16384 || opt->height > 16384)) {
-        std::cerr << "error: --resolution: expected WxH with each in 1 ... 16384 (e.g. 320x180), got \"" << *resolution
-                  << "\"\n";
-        return int(kExitBadInput);
+      if (!resolution->empty()) {
+        if (const std::string problem = set_resolution(*resolution, *opt); !problem.empty()) {
+          std::cerr << "error: " << problem << "\n";
+          return int(kExitBadInput);
+        }
       }
       if (!shard->empty()) {
         int k = 0, n = 0;
@@ -69,7 +69,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
       }
       if (opt->out_dir.empty()) {
         try {
-          opt->out_dir = results_path(ExperimentSpec::load(resolve_experiment_path(opt->experiment)).name);
+          opt->out_dir = default_run_dir(opt->experiment);
         } catch (const ConfigError& e) {
           std::cerr << "error: " << e.what() << "\n";
           return int(kExitBadInput);

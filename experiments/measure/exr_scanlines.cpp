@@ -1,5 +1,7 @@
 #include "experiments/measure/exr_scanlines.h"
 
+#include "metrics/color/image_io.h"
+
 #include <Imath/half.h>
 #include <OpenEXR/openexr.h>
 #include <libdeflate.h>
@@ -333,6 +335,85 @@ std::string exr_chunk_problem(const std::string& path) {
     }
   }
   return "";
+}
+
+bool read_simple_exr_header(const std::string& path, SimpleExrHeader* h) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = quiet;
+  Context ctx;
+  if (exr_start_read(&ctx.c, path.c_str(), &init) != EXR_ERR_SUCCESS) return false;
+  int parts = 0;
+  exr_storage_t storage;
+  exr_attr_box2i_t dw, disp;
+  const exr_attr_chlist_t* list = nullptr;
+  if (exr_get_count(ctx.c, &parts) != EXR_ERR_SUCCESS || parts != 1 ||
+      exr_get_storage(ctx.c, 0, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE ||
+      exr_get_data_window(ctx.c, 0, &dw) != EXR_ERR_SUCCESS ||
+      exr_get_display_window(ctx.c, 0, &disp) != EXR_ERR_SUCCESS || dw.min.x != disp.min.x ||
+      dw.min.y != disp.min.y || dw.max.x != disp.max.x || dw.max.y != disp.max.y || dw.min.x != 0 || dw.min.y != 0 ||
+      exr_get_channels(ctx.c, 0, &list) != EXR_ERR_SUCCESS)
+    return false;
+  const std::int64_t w = std::int64_t(dw.max.x) + 1, hh = std::int64_t(dw.max.y) + 1;
+  if (w < 1 || hh < 1 || w * hh > metrics::kMaxImagePixels) return false;
+  std::vector<std::string> names;
+  for (int c = 0; c < list->num_channels; ++c) {
+    const exr_attr_chlist_entry_t& e = list->entries[c];
+    if (e.x_sampling != 1 || e.y_sampling != 1 || (e.pixel_type != EXR_PIXEL_HALF && e.pixel_type != EXR_PIXEL_FLOAT))
+      return false;
+    names.emplace_back(e.name.str, size_t(e.name.length));
+  }
+  // The file stores its channels sorted by name; OpenImageIO lists colour first, then alpha.
+  std::sort(names.begin(), names.end());
+  static const std::vector<std::vector<std::string>> kSets = {
+      {"B", "G", "R"}, {"A", "B", "G", "R"}, {"Y"}, {"A", "Y"}};
+  static const std::vector<std::vector<std::string>> kOrder = {
+      {"R", "G", "B"}, {"R", "G", "B", "A"}, {"Y"}, {"Y", "A"}};
+  size_t set = kSets.size();
+  for (size_t i = 0; i < kSets.size(); ++i)
+    if (names == kSets[i]) set = i;
+  if (set == kSets.size()) return false;
+  int count = 0;
+  if (exr_get_attribute_count(ctx.c, 0, &count) != EXR_ERR_SUCCESS) return false;
+  for (int i = 0; i < count; ++i) {
+    const exr_attribute_t* a = nullptr;
+    if (exr_get_attribute_by_index(ctx.c, 0, EXR_ATTR_LIST_FILE_ORDER, i, &a) != EXR_ERR_SUCCESS || !a || !a->name)
+      return false;
+    if (std::strncmp(a->name, "oiio:", 5) == 0) return false;  // OpenImageIO would read it as its own metadata
+  }
+  h->width = int(w);
+  h->height = int(hh);
+  h->channels = kOrder[set];
+  return true;
+}
+
+Image read_image_file(const std::string& path, std::string* colorspace_tag, int* file_channels) {
+  metrics::check_image_file(path);
+  SimpleExrHeader h;
+  if (read_simple_exr_header(path, &h)) {
+    const int n = int(h.channels.size());
+    // As metrics::read_image: RGBA, grey copied to R, G and B, alpha 1 where the file has none.
+    Image img = Image::unfilled(h.width, h.height, 4);
+    bool read = false;
+    if (n >= 3) {
+      read = read_exr_scanlines(path, h.channels, img);  // R, G, B[, A]; a missing alpha is 1
+    } else {
+      Image grey = Image::unfilled(h.width, h.height, n);
+      read = read_exr_scanlines(path, h.channels, grey);
+      for (std::size_t i = 0; read && i < img.pixel_count(); ++i) {
+        float* d = img.data.data() + 4 * i;
+        d[0] = d[1] = d[2] = grey.data[i * std::size_t(n)];
+        d[3] = n == 2 ? grey.data[i * 2 + 1] : 1.0f;
+      }
+    }
+    if (read) {
+      if (colorspace_tag) *colorspace_tag = kExrColorSpace;
+      if (file_channels) *file_channels = n;
+      return img;
+    }
+  }
+  return metrics::read_image(path, colorspace_tag, file_channels);
 }
 
 }  // namespace glintlab

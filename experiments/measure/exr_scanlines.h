@@ -31,4 +31,20 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
 // file: its reader names what is wrong) and for tiled and deep parts (not checked).
 std::string exr_chunk_problem(const std::string& path);
 
+// The header of a plain OpenEXR file: one scanline part whose data window is its display window at
+// (0, 0), whose channels are exactly R, G, B[, A] or Y[, A] (half or float, not subsampled) and which
+// has no attribute named oiio:*. For such a file OpenImageIO 2.4 gives these channels in the order R,
+// G, B, A (Y, A) and the colour space kExrColorSpace, which its OpenEXR reader gives every file; false
+// for any other file (then ask OpenImageIO). No pixel is read.
+struct SimpleExrHeader {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;
+};
+inline constexpr const char* kExrColorSpace = "Linear";
+bool read_simple_exr_header(const std::string& path, SimpleExrHeader* header);
+
+// metrics::read_image (metrics/color/image_io.h), the same image, colour-space tag, channel count and
+// errors, with a plain OpenEXR file whose pixels read_exr_scanlines reads taken without OpenImageIO.
+Image read_image_file(const std::string& path, std::string* colorspace_tag = nullptr, int* file_channels = nullptr);
+
 }  // namespace glintlab

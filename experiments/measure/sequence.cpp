@@ -6,7 +6,7 @@
 #include "experiments/measure/exr_scanlines.h"
 #include "metrics/color/measurement_space.h"
 
-#include <OpenImageIO/imageio.h>
+#include "core/util/oiio_plugin.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -215,29 +215,31 @@ FrameHeader read_frame_header(const std::string& path) {
     if (fd < 0) throw IoError("cannot read '" + path + "': " + std::strerror(errno));
     ::close(fd);
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    std::string e = OIIO::geterror();
-    throw ConfigError("'" + path + "' is not an image OpenImageIO can read (" + (e.empty() ? "unknown format" : e) +
-                      ")");
+  // A plain one-part OpenEXR file is described by the OpenEXR core library as OpenImageIO would
+  // (exr_scanlines.h); any other file by OpenImageIO.
+  std::vector<oiio::Part> parts;
+  if (SimpleExrHeader simple; read_simple_exr_header(path, &simple)) {
+    parts.push_back({simple.width, simple.height, int(simple.channels.size()), simple.channels, kExrColorSpace});
+  } else {
+    parts = oiio::api().frame_parts(path, kMaxParts);
   }
   FrameHeader h;
-  for (int part = 0; part < kMaxParts && in->seek_subimage(part, 0); ++part) {
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.nchannels > kMaxChannels ||
+  for (size_t part = 0; part < parts.size(); ++part) {
+    const oiio::Part& spec = parts[part];
+    if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0 || spec.channels > kMaxChannels ||
         std::int64_t(spec.width) * spec.height > kMaxSequencePixels)
       throw ConfigError("'" + path + "': its header claims " + std::to_string(spec.width) + "x" +
-                        std::to_string(spec.height) + " pixels and " + std::to_string(spec.nchannels) +
+                        std::to_string(spec.height) + " pixels and " + std::to_string(spec.channels) +
                         " channels; allowed: 1 to " + std::to_string(kMaxSequencePixels) + " pixels, 1 to " +
                         std::to_string(kMaxChannels) + " channels");
     if (part == 0) {
       h.width = spec.width;
       h.height = spec.height;
-      h.colorspace = spec.get_string_attribute("oiio:ColorSpace");
+      h.colorspace = spec.colorspace;
     } else if (spec.width != h.width || spec.height != h.height) {
       continue;  // parts of another size are not frames of this sequence
     }
-    for (int c = 0; c < spec.nchannels; ++c) h.channels.push_back(spec.channel_name(c));
+    h.channels.insert(h.channels.end(), spec.names.begin(), spec.names.end());
   }
   if (const std::string problem = exr_chunk_problem(path); !problem.empty())
     throw ConfigError("'" + path + "' is truncated or damaged: " + problem);
@@ -285,52 +287,8 @@ Image read_frame_channels(const std::string& path, const std::vector<std::string
   Image out = Image::unfilled(h.width, h.height, nc);
   if (read_exr_scanlines(path, channels, out)) return out;  // every value written
   std::fill(out.data.begin(), out.data.end(), nc > int(channels.size()) ? 1.0f : 0.0f);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw ConfigError("'" + path + "': " + OIIO::geterror());
   std::vector<bool> done(channels.size(), false);
-  for (int part = 0; part < kMaxParts && in->seek_subimage(part, 0); ++part) {
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width != h.width || spec.height != h.height) continue;
-    std::vector<int> index(channels.size(), -1);
-    bool any = false;
-    for (size_t k = 0; k < channels.size(); ++k)
-      for (int c = 0; c < spec.nchannels && !done[k]; ++c)
-        if (spec.channel_name(c) == channels[k]) index[k] = c, any = true;
-    if (!any) continue;
-    // One read of the contiguous channel range the part needs: straight into the image where the
-    // channels it gives are the image's next ones in the same order (R, G, B; X, Y, Z, W), else
-    // through a buffer.
-    int lo = spec.nchannels, hi = 0;
-    for (int c : index)
-      if (c >= 0) lo = std::min(lo, c), hi = std::max(hi, c + 1);
-    const int n = hi - lo;
-    size_t first = 0;
-    while (index[first] < 0) ++first;
-    bool direct = first + size_t(n) <= channels.size();
-    for (size_t k = 0; k < channels.size(); ++k)
-      direct = direct && (k >= first && k < first + size_t(n) ? index[k] == lo + int(k - first) : index[k] < 0);
-    auto read = [&](float* data, int stride_channels) {
-      if (in->read_image(part, 0, lo, hi, OIIO::TypeDesc::FLOAT, data, OIIO::stride_t(sizeof(float)) * stride_channels))
-        return;
-      std::string e = in->geterror();
-      throw ConfigError("'" + path + "': cannot read its pixels (" + (e.empty() ? "read failed" : e) +
-                        "; a truncated or damaged file?)");
-    };
-    if (direct) {
-      read(out.data.data() + first, nc);
-      for (size_t k = first; k < first + size_t(n); ++k) done[k] = true;
-      continue;
-    }
-    std::vector<float> raw(size_t(h.width) * h.height * size_t(n));
-    read(raw.data(), n);
-    const size_t px = out.pixel_count();
-    for (size_t k = 0; k < channels.size(); ++k) {
-      if (index[k] < 0) continue;
-      const int c = index[k] - lo;
-      for (size_t i = 0; i < px; ++i) out.data[i * size_t(nc) + k] = raw[i * size_t(n) + size_t(c)];
-      done[k] = true;
-    }
-  }
+  oiio::api().read_frame_channels(path, channels, h.width, h.height, kMaxParts, out, done);
   for (size_t k = 0; k < channels.size(); ++k)
     if (!done[k]) throw ConfigError("'" + path + "': no channel '" + channels[k] + "'; the file has: " + channel_list(h));
   return out;

@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <regex>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -488,6 +489,23 @@ int merge_runs(const std::vector<std::string>& dirs, const std::string& out, boo
         }
       },
       log);
+}
+
+std::string default_run_dir(const std::string& experiment) {
+  return results_path(ExperimentSpec::load(resolve_experiment_path(experiment)).name);
+}
+
+std::string set_resolution(const std::string& text, RunOptions& options) {
+  std::smatch m;
+  if (std::regex_match(text, m, std::regex("([0-9]{1,5})x([0-9]{1,5})"))) {
+    const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+    if (w >= 1 && h >= 1 && w <= 16384 && h <= 16384) {
+      options.width = w;
+      options.height = h;
+      return "";
+    }
+  }
+  return "--resolution: expected WxH with each in 1 ... 16384 (e.g. 320x180), got \"" + text + "\"";
 }
 
 }  // namespace glintlab

@@ -37,6 +37,14 @@ struct RunOptions {
 // 5 internal (what the run throws, mapped by run_guarded and printed on `log`).
 int run_experiment(const RunOptions& options, std::ostream& log);
 
+// The default output folder of a run: results_path(<the experiment's name>) (core/util/data_dir.h).
+// Throws ConfigError when the experiment cannot be loaded.
+std::string default_run_dir(const std::string& experiment);
+
+// --resolution "WxH" into `options` (width, height); "" when it is one, else the message that says
+// what is allowed.
+std::string set_resolution(const std::string& text, RunOptions& options);
+
 // `glintlab merge DIR... --out DIR`: joins the journals of the shards of one
 // run into frames.csv, summary.json, images and the report, identical in
 // metrics to a single run. Exit 2 when the shards are not of one run, are

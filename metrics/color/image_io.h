@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "core/util/image.h"
 
@@ -30,8 +31,9 @@ void write_exr(const std::string& path, const Image& img, const std::array<float
                bool half = false);
 
 // Non-colour data (error maps, masks) as float/half OpenEXR without a chromaticities attribute.
-// Channels named as for write_exr (a one-channel map is "Y").
-void write_exr_data(const std::string& path, const Image& img, bool half = false);
+// Channels named as for write_exr (a one-channel map is "Y"), or `names`, one per channel (no alpha).
+void write_exr_data(const std::string& path, const Image& img, bool half = false,
+                    const std::vector<std::string>& names = {});
 
 // 8-bit PNG of display-encoded values (e.g. ColorManager::display output): each value is clamped
 // to [0, 1] (NaN -> 0) and quantised with rounding, q = round(255 v). No transfer curve is applied.

@@ -26,10 +26,13 @@
 //      included (the next frame is decoded while one is measured): frames/s of the
 //      whole, and ms and frames/s per metric group and for reading a frame; then
 //      the same with every group of statistics, as `run` measures.
+//   6. Start-up: `glintlab compare` on a 16x16 pair of float EXR files, `glintlab check` of a
+//      summary against itself and `glintlab --help`, each in a fresh process, interleaved: median
+//      wall and CPU (user + system) ms, and each one's CPU over --help's.
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
 // Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H]
-//                       [--only surface|terrain|reference|taa|metrics|measure]
+//                       [--only surface|terrain|reference|taa|metrics|measure|startup]
 //                       [--smoke]
 // --smoke runs every section once at tiny sizes (its figures mean nothing): the test
 // bench.smoke runs it with the validation layers on (GLINTLAB_VALIDATION=1), so
@@ -56,6 +59,9 @@
 #include "metrics/stats.h"
 
 #include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -315,6 +321,80 @@ class MeasureProcess {
   int go_ = -1;
 };
 
+// ---- the start-up section: the glintlab CLI (GLINTLAB_CLI) in fresh processes.
+struct ProcessCost {
+  double wall_ms = 0, cpu_ms = 0;  // cpu: user + system of the process
+};
+
+// Runs `args` with stdout and stderr to /dev/null; the exit code must be 0.
+ProcessCost spawn_timed(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t io;
+  posix_spawn_file_actions_init(&io);
+  posix_spawn_file_actions_addopen(&io, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&io, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = posix_spawn(&pid, argv[0], &io, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&io);
+  if (rc != 0) throw std::runtime_error("startup section: cannot start " + args[0]);
+  int status = 0;
+  rusage ru{};
+  if (::wait4(pid, &status, 0, &ru) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("startup section: " + args[0] + " " + args[1] + " failed");
+  ProcessCost c;
+  c.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  c.cpu_ms = (double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) * 1e6 + double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec)) / 1e3;
+  return c;
+}
+
+void startup_section(int runs) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("glintlab-bench-startup-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  Image ref(16, 16, 3), test(16, 16, 3);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 3; ++c) {
+        ref.at(x, y, c) = 0.1f + 0.05f * float((x + y + c) % 7);
+        test.at(x, y, c) = ref.at(x, y, c) * (1.0f + 0.02f * float((x * y + c) % 5));
+      }
+  const metrics::ColorManager cm;
+  const auto chroma = cm.chromaticities("lin_rec709");
+  const std::string r = (dir / "ref.exr").string(), t = (dir / "test.exr").string();
+  metrics::write_exr(r, ref, chroma);
+  metrics::write_exr(t, test, chroma);
+  const std::string summary = std::string(GLINTLAB_SOURCE_DIR) + "/results/baselines/regression.json";
+  struct Command {
+    const char* name;
+    std::vector<std::string> args;
+    std::vector<ProcessCost> costs;
+  };
+  std::vector<Command> commands = {{"glintlab --help", {GLINTLAB_CLI, "--help"}, {}},
+                                   {"glintlab compare 16x16", {GLINTLAB_CLI, "compare", t, r}, {}},
+                                   {"glintlab check", {GLINTLAB_CLI, "check", summary, summary}, {}}};
+  for (int i = 0; i < runs + 1; ++i)  // the first round warms the page cache and is not counted
+    for (Command& c : commands) {
+      const ProcessCost cost = spawn_timed(c.args);
+      if (i > 0) c.costs.push_back(cost);
+    }
+  auto median_of = [](const std::vector<ProcessCost>& v, double ProcessCost::*field) {
+    std::vector<double> x;
+    for (const auto& c : v) x.push_back(c.*field);
+    return median(x);
+  };
+  const double help_cpu = median_of(commands[0].costs, &ProcessCost::cpu_ms);
+  std::printf("\nstart-up: each command in a fresh process, %d interleaved runs (median)\n", runs);
+  std::printf("  %-24s %9s %9s %14s\n", "command", "wall ms", "CPU ms", "CPU / --help");
+  for (const Command& c : commands) {
+    const double cpu = median_of(c.costs, &ProcessCost::cpu_ms);
+    std::printf("  %-24s %9.1f %9.1f %14.2f\n", c.name, median_of(c.costs, &ProcessCost::wall_ms), cpu, cpu / help_cpu);
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
+}
+
 int bench(int argc, char** argv) {
   if (!std::getenv("GLINTLAB_BENCH_DEFAULT_MALLOC")) tune_allocator_for_rendering();  // as the glintlab CLI does
   std::string device;
@@ -331,7 +411,7 @@ int bench(int argc, char** argv) {
       ->expected(2)
       ->check(CLI::Range(1, 16384));
   app.add_option("--only", only, "run one section")
-      ->check(CLI::IsMember({"surface", "terrain", "reference", "taa", "metrics", "measure"}));
+      ->check(CLI::IsMember({"surface", "terrain", "reference", "taa", "metrics", "measure", "startup"}));
   app.add_option("--measure-files", keep, "the measure section writes its sequences into DIR/float and DIR/half "
                                           "and keeps them (for profiling `glintlab measure` alone)");
   app.add_flag("--smoke", smoke, "every section once at tiny sizes, to check that the bench runs (figures "
@@ -602,6 +682,8 @@ int bench(int argc, char** argv) {
   }
   // ---- 5. measure: files in, metrics out
   if (section("measure") && !measure_process.run()) return 1;
+  // ---- 6. start-up of the CLI
+  if (section("startup")) startup_section(smoke ? 1 : 15);
   if (ctx.validation_enabled() && ctx.validation_message_count() > 0) {
     std::fprintf(stderr, "error: the Vulkan validation layer reported %zu message(s); first: %s\n",
                  ctx.validation_message_count(), ctx.validation_messages().front().c_str());

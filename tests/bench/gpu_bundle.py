@@ -14,7 +14,9 @@ linked with BIND_NOW, so a missing symbol fails at load, and a call into a stub 
 with SIGILL. LibTIFF and FreeType stay real: the catalogue opens a TIFF reader, and the contact
 sheet's labels are drawn with FreeType. glibc stays the machine's own (the version the bundle needs
 is printed and checked by run.sh); libstdc++ and libgcc_s go into lib-fallback/, used only where the
-machine's are older than the ones the binaries were built against.
+machine's are older than the ones the binaries were built against. libglintlab_oiio.so, which the
+programs load with dlopen when they first read or write an image through OpenImageIO
+(core/util/oiio_plugin.h), goes into lib/ with its closure.
 
     tests/bench/gpu_bundle.py [--build build] [--out .gpu] [--debs] [--check]
 
@@ -51,6 +53,7 @@ STUB = re.compile(r"^lib(opencv_(?!(core|imgproc|video)\.so)|dcm|oflog|ofstd|i2d
                   r"swresample|postproc|heif|openvdb|raw|raw_r|gif|openjp2|webp|webpdemux|webpmux|sharpyuv|"
                   r"gdal)[^/]*\.so")
 PROGRAMS = ["glintlab", "glintlab_bench"]
+PLUGINS = ["libglintlab_oiio.so"]  # loaded with dlopen (core/util/oiio_plugin.h): found in lib/ by --library-path
 CTOR_DTOR = re.compile(r"^_ZN.*(C[123]|D[012])E")  # Itanium-mangled constructors and destructors
 
 
@@ -170,7 +173,8 @@ exec /lib64/ld-linux-x86-64.so.2 --library-path "$libs" "$here/bin/$prog" "$@"
 def build(args):
     paths = soname_paths()
     programs = [os.path.join(args.build, p) for p in PROGRAMS]
-    for p in programs:
+    plugins = [os.path.join(args.build, p) for p in PLUGINS]
+    for p in programs + plugins:
         if not os.path.isfile(p):
             sys.exit(f"gpu_bundle: {p} not found: build first (cmake --build {args.build})")
     stage = tempfile.mkdtemp(prefix="glintlab-gpu-")
@@ -178,7 +182,7 @@ def build(args):
     for d in ("bin", "lib", "lib-fallback", "work"):
         os.makedirs(os.path.join(top, d))
     # the closure, stopping at stubs and the system's libraries
-    kept, stubs, queue = {}, {}, [n for p in programs for n in needed(p)]
+    kept, stubs, queue = {}, {}, [n for p in programs + plugins for n in needed(p)]
     while queue:
         so = queue.pop()
         if so in SYSTEM or so in kept or so in stubs:
@@ -190,12 +194,14 @@ def build(args):
             continue
         kept[so] = paths[so]
         queue += needed(paths[so])
-    objects = programs + list(kept.values())
+    objects = programs + plugins + list(kept.values())
     imports = set()
     for o in objects:
         imports |= {(n, v) for n, v, d, *_ in dyn_symbols(o) if not d and n}
     for p in programs:
         shutil.copy2(p, os.path.join(top, "bin"))
+    for p in plugins:
+        shutil.copy2(p, os.path.join(top, "lib"))
     for so, path in sorted(kept.items()):
         shutil.copy2(path, os.path.join(top, "lib-fallback" if so in FALLBACK else "lib", so))
     n_syms = sum(make_stub(so, path, imports, os.path.join(top, "lib"), os.path.join(top, "work"))
@@ -203,6 +209,7 @@ def build(args):
     shutil.rmtree(os.path.join(top, "work"))
     # the data, in share/glintlab/ beside bin/ where the programs look for it (core/util/data_dir.h)
     subprocess.run(["cmake", "--install", args.build, "--prefix", top], check=True, capture_output=True)
+    shutil.rmtree(os.path.join(top, "lib", "python3"), ignore_errors=True)  # the Python module: not used there
     with open(os.path.join(top, "needs-glibc"), "w") as f:
         f.write(max_version(objects, "GLIBC") + "\n")
     with open(os.path.join(top, "needs-glibcxx"), "w") as f:

@@ -98,15 +98,16 @@ TEST_F(CompareTest, IdenticalImagesGiveZeroAndJsonSchema) {
   for (const auto& [key, value] : j.items())
     EXPECT_TRUE(key == "metrics" || key == "input" || key == "flip" || key == "test" || key == "reference") << key;
   ASSERT_TRUE(j.at("metrics").is_object());
-  // Every registered metric, each with {"mean", "max"}, numbers (or null for +inf PSNR); flip also has
-  // FLIP's pooled values.
+  // Every registered metric, each with {"mean", "max", "p95"}, numbers (or null for +inf PSNR, and p95
+  // of psnr); flip also has FLIP's pooled values.
   EXPECT_EQ(j["metrics"].size(), gm::metric_names().size());
   for (const auto& n : gm::metric_names()) {
     ASSERT_TRUE(j["metrics"].contains(n)) << n;
     const auto& m = j["metrics"][n];
-    EXPECT_EQ(m.size(), n == "flip" ? 6u : 2u) << n;
+    EXPECT_EQ(m.size(), n == "flip" ? 7u : 3u) << n;
     EXPECT_TRUE(m.at("mean").is_number() || m.at("mean").is_null()) << n;
     EXPECT_TRUE(m.at("max").is_number() || m.at("max").is_null()) << n;
+    EXPECT_TRUE(n == "psnr" ? m.at("p95").is_null() : m.at("p95").get<double>() == 0.0) << n;  // identical images
   }
   for (const char* k : {"min", "weighted_median", "weighted_quartile_1", "weighted_quartile_3"})
     EXPECT_EQ(j["metrics"]["flip"].at(k).get<double>(), 0.0) << k;

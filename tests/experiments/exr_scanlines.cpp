@@ -189,3 +189,63 @@ TEST(ExrScanlines, DamagedBytesAreReadOrRefusedNeverACrash) {
   EXPECT_EQ(read + refused, 300);
   EXPECT_GT(refused, 0);
 }
+
+// A plain OpenEXR file (read_simple_exr_header) is described and read as OpenImageIO does: the same
+// channels in the same order, colour-space tag, channel count and pixels from read_image_file as
+// from metrics::read_image (OpenImageIO); what is not plain is declined and still read the same.
+TEST(ExrScanlines, PlainFilesAsOpenImageIODescribesAndReadsThem) {
+  test::TempDir dir("exr_plain");
+  const std::vector<float> px = test_pixels(true);
+  int plain = 0;
+  for (const std::vector<std::string>& names :
+       std::vector<std::vector<std::string>>{{"R", "G", "B"}, {"R", "G", "B", "A"}, {"Y"}, {"Y", "A"}, {"R", "G", "Z"}})
+    for (OIIO::TypeDesc type : {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT})
+      for (const char* comp : {"zip", "piz"})
+        for (int origin : {0, 3}) {
+          const std::string what = std::to_string(names.size()) + " channels from " + names[0] + ", " + comp +
+                                   (type == OIIO::TypeDesc::HALF ? " half" : " float") + ", origin " +
+                                   std::to_string(origin);
+          const fs::path path = dir.path() / "p.exr";
+          {
+            OIIO::ImageSpec spec(kW, kH, int(names.size()), type);
+            spec.channelnames = names;
+            spec.alpha_channel = names.back() == "A" ? int(names.size()) - 1 : -1;
+            spec.x = spec.y = origin;
+            spec.full_x = spec.full_y = 0;
+            spec.full_width = kW + origin;
+            spec.full_height = kH + origin;
+            spec.attribute("compression", comp);
+            std::vector<float> mine(size_t(kW) * kH * names.size());
+            for (size_t i = 0; i < mine.size(); ++i) mine[i] = px[i % px.size()];
+            auto out = OIIO::ImageOutput::create(path.string());
+            ASSERT_TRUE(out && out->open(path.string(), spec)) << OIIO::geterror();
+            ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, mine.data()));
+            ASSERT_TRUE(out->close());
+          }
+          auto in = OIIO::ImageInput::open(path.string());
+          ASSERT_TRUE(in);
+          SimpleExrHeader h;
+          const bool is_plain = read_simple_exr_header(path.string(), &h);
+          const bool plain_layout = names != std::vector<std::string>{"R", "G", "Z"};
+          EXPECT_EQ(is_plain, origin == 0 && plain_layout) << what;
+          if (is_plain) {
+            ++plain;
+            EXPECT_EQ(h.width, in->spec().width) << what;
+            EXPECT_EQ(h.height, in->spec().height) << what;
+            EXPECT_EQ(h.channels, in->spec().channelnames) << what;
+            EXPECT_EQ(kExrColorSpace, in->spec().get_string_attribute("oiio:ColorSpace")) << what;
+            const FrameHeader f = read_frame_header(path.string());
+            EXPECT_EQ(f.channels, in->spec().channelnames) << what;
+            EXPECT_EQ(f.colorspace, kExrColorSpace) << what;
+          }
+          std::string tag_fast, tag_oiio;
+          int n_fast = 0, n_oiio = 0;
+          const Image fast = read_image_file(path.string(), &tag_fast, &n_fast);
+          const Image oiio = metrics::read_image(path.string(), &tag_oiio, &n_oiio);
+          EXPECT_EQ(tag_fast, tag_oiio) << what;
+          EXPECT_EQ(n_fast, n_oiio) << what;
+          ASSERT_EQ(fast.data.size(), oiio.data.size()) << what;
+          EXPECT_EQ(std::memcmp(fast.data.data(), oiio.data.data(), fast.data.size() * sizeof(float)), 0) << what;
+        }
+  EXPECT_EQ(plain, 4 * 2 * 2);  // every plain layout, half and float, ZIP and PIZ (the header is plain either way)
+}

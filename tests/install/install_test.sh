@@ -7,7 +7,9 @@
 # every input is copied out first, and where strace works, a path opened or looked at under the
 # source or build tree fails the test. The prefix's program prints its data folder and lists the
 # experiments. A program beside no data, or GLINTLAB_DATA_DIR naming an empty folder, fails with
-# exit 4 and says where it looked and which variable to set.
+# exit 4 and says where it looked and which variable to set. The Python module of the package and of
+# the prefix imports (Debian's python3, the package's dist-packages on PYTHONPATH), finds its data
+# beside it and compares two images.
 #
 #   tests/install/install_test.sh SOURCE_DIR BUILD_DIR      (ctest runs it as install.package)
 set -euo pipefail
@@ -45,6 +47,9 @@ if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf
   libs=$(ldd "$build/glintlab")
   declare -A so_of real_of
   for lib in $needed; do
+    # The dynamic loader itself (libc6; needed for __tls_get_addr by the position-independent code),
+    # which ldd lists by its path, without "=>".
+    case $lib in ld-linux*.so.*) continue ;; esac
     so_of[$lib]=$(awk -v l="$lib" '$1 == l && $2 == "=>" {print $3}' <<<"$libs")
     [ -n "${so_of[$lib]}" ] || fail "ldd does not resolve $lib, which $build/glintlab needs"
     real_of[$lib]=$(readlink -f "${so_of[$lib]}")
@@ -52,6 +57,7 @@ if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf
   # One query for all ("package[:arch]: path" a line); the link's path or the file's is registered.
   owners=$(dpkg -S "${so_of[@]}" "${real_of[@]}" 2>/dev/null || true)
   for lib in $needed; do
+    [ -n "${so_of[$lib]:-}" ] || continue
     pkg=$(grep -F -e ": ${so_of[$lib]}" -e ": ${real_of[$lib]}" <<<"$owners" | head -n1 | sed 's/[:,].*//' || true)
     [ -n "$pkg" ] || continue
     grep -qx "$pkg" <<<"$depends" || fail "the program needs $lib, of the package $pkg, which Depends does not name"
@@ -66,9 +72,12 @@ for f in ./usr/bin/glintlab ./usr/share/glintlab/shaders/passes/surface.vert ./u
   ./usr/share/glintlab/experiments/regression.json ./usr/share/glintlab/experiments/paths/orbit-close.json \
   ./usr/share/glintlab/experiments/thesis/fig6-7-hdri-match.json \
   ./usr/share/glintlab/experiments/report/glintlab_report.py ./usr/share/glintlab/experiments/tune/glintlab_tune.py \
-  ./usr/share/glintlab/metrics/color/ocio/config.ocio; do
+  ./usr/share/glintlab/metrics/color/ocio/config.ocio ./usr/lib/python3/dist-packages/glintlab/__init__.py \
+  ./usr/lib/glintlab/libglintlab_oiio.so; do
   grep -qx "$f" <<<"$files" || fail "the package lacks $f"
 done
+grep -Eqx '\./usr/lib/python3/dist-packages/glintlab/_core\.cpython-[0-9]+-[a-z0-9_]+-linux-gnu\.so' <<<"$files" ||
+  fail "the package lacks the Python module usr/lib/python3/dist-packages/glintlab/_core.cpython-*.so"
 stray=$(grep -E '\.(cpp|h|o|a|md)$|CMake|/tests/data/' <<<"$files" || true)
 [ -z "$stray" ] || fail "the package holds build or source files: $stray"
 dpkg-deb -x "$deb" "$tmp/root"
@@ -138,6 +147,28 @@ run "$pkg" check "$tmp/work/results/measure/summary.json" "$tmp/build-measure/su
   { cat "$tmp/out"; fail "the package's measure differs from the build tree's"; }
 step "run, measure and check took $(( ($(date +%s%N) - t0) / 1000000 )) ms"
 
+# The Python module as a user imports it: `python3 -c "import glintlab"` from the package's
+# dist-packages, its data beside it, and a comparison that gives what the package's CLI gives.
+step "python3 -c 'import glintlab'"
+python=/usr/bin/python3
+run env PYTHONPATH="$tmp/root/usr/lib/python3/dist-packages" "$python" -c "import glintlab" ||
+  { cat "$tmp/out"; fail "python3 -c 'import glintlab' failed with the package's module"; }
+F=$src/tests/data/flip
+cp "$F/hdr_bimodal_ref.exr" "$F/hdr_bimodal_test.exr" "$F/ldr_ref.png" "$tmp/inputs/"
+run "$pkg" compare "$tmp/inputs/hdr_bimodal_test.exr" "$tmp/inputs/hdr_bimodal_ref.exr" --metric flip --json ||
+  { cat "$tmp/out"; fail "the package's glintlab compare failed"; }
+cp "$tmp/out" "$tmp/cli-compare.json"
+run env PYTHONPATH="$tmp/root/usr/lib/python3/dist-packages" "$python" -c "
+import json, glintlab, sys
+assert glintlab._core.data_folder() == '$tmp/root/usr/share/glintlab', glintlab._core.data_folder()
+r = glintlab.compare('$tmp/inputs/hdr_bimodal_ref.exr', '$tmp/inputs/hdr_bimodal_test.exr', metrics='flip')
+cli = json.load(open('$tmp/cli-compare.json'))['metrics']['flip']
+assert r['flip']['mean'] == cli['mean'] and r['flip']['map'].shape == (64, 96), (r['flip']['mean'], cli)
+assert glintlab.read_image('$tmp/inputs/ldr_ref.png').shape == (64, 96, 3)  # OpenImageIO, through libglintlab_oiio.so
+print(glintlab.__file__)" || { cat "$tmp/out"; fail "the package's Python module does not compare as its CLI does"; }
+grep -qxF "$tmp/root/usr/lib/python3/dist-packages/glintlab/__init__.py" "$tmp/out" ||
+  fail "python3 imported glintlab from elsewhere: $(cat "$tmp/out")"
+
 # ---------------------------------------------------------------- the prefix, and missing data
 prefixed=$tmp/prefix/bin/glintlab
 run "$prefixed" --version || { cat "$tmp/out"; fail "the prefix's glintlab --version failed"; }
@@ -145,6 +176,9 @@ grep -qxF "data: $tmp/prefix/share/glintlab (../share/glintlab beside the execut
   fail "the prefix's glintlab does not read its data beside it:"$'\n'"$(cat "$tmp/out")"
 run "$prefixed" list || { cat "$tmp/out"; fail "the prefix's glintlab list failed"; }
 grep -q "thesis/fig6-7-hdri-match" "$tmp/out" || fail "the prefix's glintlab list lacks the thesis experiments"
+run env PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
+  "import glintlab; print(glintlab._core.data_folder())" || { cat "$tmp/out"; fail "the prefix's Python module does not import"; }
+grep -qxF "$tmp/prefix/share/glintlab" "$tmp/out" || fail "the prefix's Python module reads its data from $(cat "$tmp/out")"
 
 mkdir -p "$tmp/lonely/bin" "$tmp/empty"
 cp "$pkg" "$tmp/lonely/bin/glintlab"

@@ -1,0 +1,284 @@
+"""`import glintlab` against the command line: compare, flip and measure give the CLI's numbers to
+the bit on the same inputs (paths and arrays), each wrong input raises the documented exception,
+and two threads measure at once. ctest runs it (python.api) with the build's module on PYTHONPATH
+and the CLI in $GLINTLAB_CLI."""
+
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+
+import numpy as np
+import pytest
+
+import glintlab
+
+CLI = os.environ["GLINTLAB_CLI"]
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
+FLIP = os.path.join(DATA, "flip")
+BLENDER = os.path.join(DATA, "blender")
+HDR_REF, HDR_TEST = os.path.join(FLIP, "hdr_bimodal_ref.exr"), os.path.join(FLIP, "hdr_bimodal_test.exr")
+LDR_REF, LDR_TEST = os.path.join(FLIP, "ldr_ref.png"), os.path.join(FLIP, "ldr_test_noise.png")
+COMBINED = "ViewLayer.Combined"
+
+
+def cli(*args, check=True):
+    p = subprocess.run([CLI, *args], capture_output=True, text=True)
+    if check and p.returncode not in (0, 1):
+        raise AssertionError(f"glintlab {' '.join(args)}: exit {p.returncode}\n{p.stderr}")
+    return p
+
+
+def cli_compare(test, ref, *options):
+    return json.loads(cli("compare", test, ref, "--json", *options).stdout)
+
+
+def same(a, b):
+    """Equal to the bit, NaN equal to NaN."""
+    a, b = np.asarray(a, dtype=np.float32), np.asarray(b, dtype=np.float32)
+    return a.shape == b.shape and np.array_equal(a.view(np.uint32), b.view(np.uint32))
+
+
+def cli_map(tmp_path, test, ref, metric, *options):
+    path = str(tmp_path / f"map-{metric}.exr")
+    cli("compare", test, ref, "--metric", metric, "--map", path, *options)
+    return glintlab.read_image(path)[..., 0]
+
+
+def assert_metrics_equal(py, js):
+    assert set(py) == set(js["metrics"])
+    for name, values in js["metrics"].items():
+        for key, v in values.items():
+            assert py[name][key] == v, (name, key)  # the JSON's doubles, to the bit (None for null)
+
+
+# ---------------------------------------------------------------- compare
+
+@pytest.mark.parametrize("ref,test", [(HDR_REF, HDR_TEST), (LDR_REF, LDR_TEST)])
+def test_compare_paths_equal_cli(tmp_path, ref, test):
+    py = glintlab.compare(ref, test)
+    js = cli_compare(test, ref)
+    assert_metrics_equal(py, js)
+    assert py["flip"]["p95"] is not None and py["flip"]["p95"] <= py["flip"]["max"]
+    for metric in ("flip", "deltaE2000"):
+        assert same(py[metric]["map"], cli_map(tmp_path, test, ref, metric)), metric
+
+
+def test_compare_float_arrays_equal_cli_on_files(tmp_path):
+    py = glintlab.compare(glintlab.read_image(HDR_REF), glintlab.read_image(HDR_TEST))
+    assert_metrics_equal(py, cli_compare(HDR_TEST, HDR_REF))
+    assert same(py["flip"]["map"], cli_map(tmp_path, HDR_TEST, HDR_REF, "flip"))
+
+
+def test_compare_multilayer_arrays_equal_cli_on_files():
+    ref = os.path.join(BLENDER, "ref", "frame_0001.exr")
+    test = os.path.join(BLENDER, "spp1", "frame_0001.exr")
+    py = glintlab.compare(glintlab.read_image(ref, COMBINED), glintlab.read_image(test, COMBINED), metrics=["flip"])
+    assert_metrics_equal(py, cli_compare(test, ref, "--metric", "flip"))
+
+
+def test_compare_uint8_arrays_are_srgb_code_values():
+    # The PNG's 8-bit values as a uint8 array give what the CLI gives for the file (tagged sRGB).
+    png = np.round(glintlab.read_image(LDR_REF) * 255).astype(np.uint8)
+    png_test = np.round(glintlab.read_image(LDR_TEST) * 255).astype(np.uint8)
+    assert np.array_equal(png.astype(np.float32) * np.float32(1 / 255), glintlab.read_image(LDR_REF))
+    assert_metrics_equal(glintlab.compare(png, png_test), cli_compare(LDR_TEST, LDR_REF))
+
+
+def test_compare_conversions_float64_noncontiguous_grey():
+    ref, test = glintlab.read_image(HDR_REF), glintlab.read_image(HDR_TEST)
+    base = glintlab.compare(ref, test, metrics="deltaE2000")["deltaE2000"]
+    as64 = glintlab.compare(ref.astype(np.float64), test.astype(np.float64), metrics="deltaE2000")["deltaE2000"]
+    assert as64["mean"] == base["mean"] and same(as64["map"], base["map"])
+    flipped = glintlab.compare(ref[:, ::-1], test[:, ::-1], metrics="deltaE2000")["deltaE2000"]
+    assert same(flipped["map"][:, ::-1], base["map"])
+    grey = glintlab.compare(ref[..., 1], test[..., 1], metrics="deltaE2000")["deltaE2000"]
+    grey3 = glintlab.compare(np.repeat(ref[..., 1:2], 3, axis=2), np.repeat(test[..., 1:2], 3, axis=2),
+                             metrics="deltaE2000")["deltaE2000"]
+    assert grey["mean"] == grey3["mean"] and grey["mean"] != base["mean"]
+
+
+def test_compare_several_tests_and_options():
+    py = glintlab.compare(LDR_REF, [LDR_TEST, os.path.join(FLIP, "ldr_test_shift.png")], metrics=["flip"],
+                          ppd=40.0, flip_ldr=True)
+    js = json.loads(cli("compare", "-r", LDR_REF, "-t", LDR_TEST, os.path.join(FLIP, "ldr_test_shift.png"),
+                        "--metric", "flip", "--ppd", "40", "--flip-ldr", "--json").stdout)
+    assert len(py) == 2
+    for p, j in zip(py, js["tests"]):
+        assert_metrics_equal(p, j)
+    assert py[0]["flip"]["mean"] != py[1]["flip"]["mean"]
+
+
+# ---------------------------------------------------------------- flip
+
+def test_flip_hdr_equals_cli():
+    error_map, mean, parameters = glintlab.flip(HDR_REF, HDR_TEST, "HDR")
+    js = cli_compare(HDR_TEST, HDR_REF, "--metric", "flip")
+    assert mean == js["metrics"]["flip"]["mean"]
+    assert parameters == {"ppd": js["flip"]["ppd"], "startExposure": js["flip"]["start_exposure"],
+                          "stopExposure": js["flip"]["stop_exposure"], "numExposures": js["flip"]["num_exposures"],
+                          "tonemapper": js["flip"]["tone_mapper"]}
+    assert error_map.dtype == np.float32 and error_map.shape == (64, 96)
+    assert float(np.mean(error_map, dtype=np.float64)) == pytest.approx(mean, rel=1e-6)
+
+
+def test_flip_parameters_by_flips_names(tmp_path):
+    error_map, mean, parameters = glintlab.flip(
+        glintlab.read_image(HDR_REF), glintlab.read_image(HDR_TEST), "hdr",
+        parameters={"tonemapper": "reinhard", "startExposure": -2.0, "stopExposure": 3.0, "numExposures": 4})
+    js = cli_compare(HDR_TEST, HDR_REF, "--metric", "flip", "--tone-mapper", "reinhard", "--start-exposure", "-2",
+                     "--stop-exposure", "3", "--num-exposures", "4")
+    assert mean == js["metrics"]["flip"]["mean"]
+    assert parameters["tonemapper"] == "reinhard" and parameters["numExposures"] == 4
+    assert same(error_map, cli_map(tmp_path, HDR_TEST, HDR_REF, "flip", "--tone-mapper", "reinhard",
+                                   "--start-exposure", "-2", "--stop-exposure", "3", "--num-exposures", "4"))
+
+
+def test_flip_ldr_equals_cli():
+    _, mean, parameters = glintlab.flip(LDR_REF, LDR_TEST, mode="LDR", ppd=30.0)
+    js = cli_compare(LDR_TEST, LDR_REF, "--metric", "flip", "--flip-ldr", "--ppd", "30")
+    assert mean == js["metrics"]["flip"]["mean"] and parameters == {"ppd": 30.0}
+
+
+# ---------------------------------------------------------------- wrong input
+
+def test_wrong_inputs_raise_documented_exceptions(tmp_path):
+    ref = glintlab.read_image(HDR_REF)
+    with pytest.raises(ValueError, match=r"unknown metric 'nope'; allowed: deltaE2000"):
+        glintlab.compare(HDR_REF, HDR_TEST, metrics="nope")
+    with pytest.raises(ValueError, match=r"image sizes differ: test 'test' is 48x64, reference 'reference' is 96x64"):
+        glintlab.compare(ref, ref[:, :48])
+    with pytest.raises(ValueError, match=r"shape \(64, 96, 5\) is not allowed; allowed: H x W \[x C\]"):
+        glintlab.compare(ref, np.zeros((64, 96, 5), np.float32))
+    with pytest.raises(ValueError, match=r"dtype int32 is not allowed; allowed: float32"):
+        glintlab.compare(ref, np.zeros((64, 96, 3), np.int32))
+    with pytest.raises(ValueError, match=r"unknown option 'gamma'; allowed: itp_nits"):
+        glintlab.compare(ref, ref, gamma=2.2)
+    with pytest.raises(ValueError, match=r"--threshold must be a number in \[0, 1\]"):
+        glintlab.compare(ref, ref, threshold=2.0)
+    with pytest.raises(ValueError, match=r"flip: unknown parameter 'vc'"):
+        glintlab.flip(ref, ref, vc=[0.7, 0.7, 3840])
+    with pytest.raises(ValueError, match=r"mode 'xdr' is not allowed"):
+        glintlab.flip(ref, ref, "xdr")
+    missing = str(tmp_path / "missing.exr")
+    with pytest.raises(ValueError, match="missing.exr"):
+        glintlab.compare(missing, HDR_TEST)
+    assert cli("compare", HDR_TEST, missing, check=False).returncode == 2  # the CLI calls it bad input too
+    with pytest.raises(ValueError, match=r"no colour channels NoSuchLayer.R, NoSuchLayer.G"):
+        glintlab.read_image(os.path.join(BLENDER, "ref", "frame_0001.exr"), "NoSuchLayer")
+    with pytest.raises(ValueError, match=r"--fps: 0 is not allowed"):
+        glintlab.measure(None, os.path.join(BLENDER, "ref") + ":" + COMBINED, fps=0)
+    with pytest.raises(ValueError, match=r"--motion-convention: 'sideways' is not known"):
+        glintlab.measure(None, os.path.join(BLENDER, "ref") + ":" + COMBINED, convention="sideways")
+    with pytest.raises(ValueError, match=r"shape \(2, 45, 80, 7\) is not allowed; allowed: T x H x W \[x C\]"):
+        glintlab.measure(None, np.zeros((2, 45, 80, 7), np.float32))
+    with pytest.raises(ValueError, match=r"--resolution: expected WxH with each in 1 ... 16384"):
+        glintlab.run("regression", out=str(tmp_path / "run"), resolution=(0, 0))
+    with pytest.raises(ValueError, match=r"--frames: 0 is not allowed"):
+        glintlab.run("regression", out=str(tmp_path / "run"), frames=0)
+    with pytest.raises(ValueError, match=r"no-such-experiment: no such experiment file"):
+        glintlab.run("no-such-experiment", out=str(tmp_path / "run"))
+    no_summary = str(tmp_path / "no-summary.json")
+    with pytest.raises(ValueError, match="no-summary.json: cannot open file"):
+        glintlab.check(no_summary, no_summary)
+    assert cli("check", no_summary, no_summary, check=False).returncode == 2  # bad input for the CLI too
+    with pytest.raises(OSError):  # a run folder that cannot be made
+        glintlab.measure(None, os.path.join(BLENDER, "ref") + ":" + COMBINED, out="/proc/glintlab-cannot-write")
+    assert not os.path.exists(tmp_path / "run")  # every error came before anything was written
+
+
+def test_no_vulkan_device_raises_runtime_error(tmp_path):
+    env = dict(os.environ, VK_ICD_FILENAMES="/nonexistent.json", VK_DRIVER_FILES="/nonexistent.json")
+    code = ("import glintlab\ntry:\n    glintlab.run('regression', out=%r, frames=1)\n"
+            "except RuntimeError as e:\n    print('RuntimeError:', e)\n") % str(tmp_path / "run")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert "RuntimeError: Vulkan: no Vulkan driver found" in p.stdout, p.stdout + p.stderr
+
+
+# ---------------------------------------------------------------- measure
+
+def timing_free(rows):
+    return [{k: v for k, v in r.items() if "ms" not in k.split("_") and k != "wall_s"} for r in rows]
+
+
+def summary_metrics(summary):
+    return {v["name"]: {m: x for m, x in v["metrics"].items() if not m.endswith("_ms")} for v in summary["variants"]}
+
+
+def cli_measure(out, *args):
+    cli("measure", "--out", str(out), "--no-report", *args)
+    with open(out / "summary.json") as f:
+        summary = json.load(f)
+    return summary, glintlab._read_records(str(out / "frames.csv"))  # the rows as measure() returns them
+
+
+def rows_equal(a, b):
+    assert len(a) == len(b)
+    for x, y in zip(a, b):
+        assert x.keys() == y.keys()
+        for k in x:
+            if isinstance(x[k], float) and math.isnan(x[k]):
+                assert isinstance(y[k], float) and math.isnan(y[k]), k
+            else:
+                assert x[k] == y[k], k
+
+
+def test_measure_paths_and_arrays_equal_cli(tmp_path):
+    ref_seq = os.path.join(BLENDER, "ref", "frame_####.exr") + ":" + COMBINED
+    test_seq = os.path.join(BLENDER, "spp4", "frame_####.exr") + ":" + COMBINED
+    cs, crows = cli_measure(tmp_path / "cli", "--reference", ref_seq, "--test", "spp4=" + test_seq,
+                            "--metrics", "deltaE2000,flip")
+    ps, prows = glintlab.measure(ref_seq, {"spp4": test_seq}, metrics="deltaE2000,flip", out=tmp_path / "py")
+    assert summary_metrics(ps) == summary_metrics(cs)
+    rows_equal(timing_free(prows), timing_free(crows))
+    # The same frames as arrays: the same numbers.
+    ref, test = glintlab.read_sequence(ref_seq), glintlab.read_sequence(test_seq)
+    assert ref.shape == (8, 45, 80, 3) and ref.dtype == np.float32
+    s, rows = glintlab.measure(ref, {"spp4": test}, metrics=["deltaE2000", "flip"])
+    assert summary_metrics(s) == summary_metrics(cs)
+    assert [r["flicker_ratio"] for r in timing_free(rows)][1:] == [r["flicker_ratio"] for r in crows][1:]
+    assert rows[3]["deltaE2000"] == crows[3]["deltaE2000"] and rows[3]["deltaE2000"] > 0
+
+
+def test_two_threads_measure_at_once(tmp_path):
+    seq = glintlab.read_sequence(os.path.join(BLENDER, "spp1"), COMBINED)
+    ref = glintlab.read_sequence(os.path.join(BLENDER, "ref"), COMBINED)
+    results, errors = {}, []
+
+    def work(i):
+        try:
+            results[i] = glintlab.measure(ref, seq, metrics="flip", out=tmp_path / f"t{i}")
+        except Exception as e:  # noqa: BLE001 - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=300)
+    assert not errors and len(results) == 2
+    assert summary_metrics(results[0][0]) == summary_metrics(results[1][0])
+    rows_equal(timing_free(results[0][1]), timing_free(results[1][1]))
+
+
+# ---------------------------------------------------------------- check
+
+def test_check_passes_and_finds_a_regression(tmp_path):
+    seq = os.path.join(BLENDER, "spp1") + ":" + COMBINED
+    summary, _ = glintlab.measure(os.path.join(BLENDER, "ref") + ":" + COMBINED, seq, metrics="deltaE2000",
+                                  out=tmp_path / "m")
+    passed, regressions = glintlab.check(summary, str(tmp_path / "m" / "summary.json"))
+    assert passed and regressions == []
+    better = json.loads(json.dumps(summary))
+    better["variants"][0]["metrics"]["deltaE2000"]["mean"] *= 0.5
+    passed, regressions = glintlab.check(summary, better)
+    assert not passed and [(r["variant"], r["metric"]) for r in regressions] == [("spp1", "deltaE2000")]
+    with open(tmp_path / "better.json", "w") as f:
+        json.dump(better, f)
+    assert cli("check", str(tmp_path / "m" / "summary.json"), str(tmp_path / "better.json")).returncode == 1
+    passed, _ = glintlab.check(summary, better, tolerances={"deltaE2000": 1.5})
+    assert passed
+    with pytest.raises(ValueError, match="nope"):
+        glintlab.check(summary, better, tolerances={"nope": 1})
