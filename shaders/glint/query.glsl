@@ -8,7 +8,7 @@
 // (glint_limit_D) in the far field.
 //
 // A model file declares itself in comment lines that glintlab reads
-// (core/material/glint_registry.h):
+// (core/material/glint_model.h):
 //   // glint_model truth=grains|self limit=beckmann|ggx checks=finite,unbiased,limit,deterministic
 //   // glint_parameter NAME default=VALUE range=LO,HI     (a number)
 //   // glint_parameter NAME default=false type=bool       (0.0 or 1.0 in the query)

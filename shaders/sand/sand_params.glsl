@@ -17,7 +17,7 @@
 #define SAND_FRESNEL_MACRO_NORMAL 0u     // w_h = halfway of w_i and its mirror about n (= n)
 #define SAND_FRESNEL_LIGHT_VIEW 1u       // w_h = normalize(w_i + w_o)
 
-// glint_model values (core/material/glint_registry.h)
+// glint_model values (core/material/glint_model.h)
 #define SAND_GLINT_NONE 0u
 #define SAND_GLINT_KAJS 1u      // Kajs 2022 eq. 4.17-4.23 (sand/glints.glsl)
 // >= 2: a glint_D model (glint/query.glsl), 2 + its index in the registry
