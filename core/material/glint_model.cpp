@@ -1,5 +1,7 @@
 #include "core/material/glint_model.h"
 
+#include "core/util/strings.h"
+
 #include "core/util/content_hash.h"
 #include "core/util/json_check.h"
 #include "core/vk/shader_compiler.h"
@@ -18,11 +20,8 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw ConfigError(p.string() + ": cannot read the glint model file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  if (std::optional<std::string> text = read_text_file(p)) return *text;
+  throw ConfigError(p.string() + ": cannot read the glint model file");
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {

@@ -1,7 +1,11 @@
-// Small text and timing helpers every layer uses: one definition each.
+// Small text, file and timing helpers every layer uses: one definition each.
 #pragma once
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -12,6 +16,15 @@ inline std::string join(const std::vector<std::string>& items, const char* sep =
   std::string s;
   for (size_t i = 0; i < items.size(); ++i) s += (i ? sep : "") + (quote + items[i] + quote);
   return s;
+}
+
+// A file's whole content, or nullopt when it cannot be opened (the caller says what it is in its error).
+inline std::optional<std::string> read_text_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
 
 // Milliseconds since t0 on the steady clock.

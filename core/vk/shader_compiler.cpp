@@ -3,6 +3,7 @@
 #include "core/util/atomic_file.h"
 
 #include "core/util/content_hash.h"
+#include "core/util/strings.h"
 #include "core/util/data_dir.h"
 
 #include <glslang/Public/ResourceLimits.h>
@@ -54,11 +55,8 @@ const char* stage_name(ShaderStage s) {
 }
 
 std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw ShaderCompileError(p.string() + ": cannot open shader source");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  if (std::optional<std::string> text = read_text_file(p)) return *text;
+  throw ShaderCompileError(p.string() + ": cannot open shader source");
 }
 
 // Resolves #include "x" as an include alias (kIncludeAliasPrefix) when one
