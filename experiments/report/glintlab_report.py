@@ -38,6 +38,9 @@ import subprocess
 import sys
 import traceback
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import glintlab_pareto  # noqa: E402  (beside this file: here and where installed)
+
 EXIT_OK, EXIT_BAD_INPUT, EXIT_IO, EXIT_INTERNAL, EXIT_MISSING_MODULE = 0, 2, 4, 5, 10
 
 _missing = []
@@ -381,12 +384,10 @@ def pareto_front(points, floors=None):
     non-dominated points sorted by x."""
     floors = floors or {}
 
-    def dominates(q, p):
-        f = max(floors.get(q[2]) or 0.0, floors.get(p[2]) or 0.0)
-        return q[0] <= p[0] and q[1] <= p[1] + f and (q[0] < p[0] or q[1] < p[1] - f)
+    def slack(q, p):  # the cost is exact; the error is compared up to the larger floor
+        return (0.0, max(floors.get(q[2]) or 0.0, floors.get(p[2]) or 0.0))
 
-    front = [p for p in points if not any(dominates(q, p) for q in points if q is not p)]
-    return sorted(front, key=lambda p: (p[0], p[1]))
+    return sorted(glintlab_pareto.front(points, lambda p: (p[0], p[1]), slack), key=lambda p: (p[0], p[1]))
 
 
 def floor_items(reference):
