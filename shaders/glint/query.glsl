@@ -41,6 +41,7 @@ struct GlintQuery {
   vec2 uv;              // surface coordinates of the shading point
   vec2 duv_dx, duv_dy;  // their screen derivatives: the pixel footprint
   vec3 wi, wo, h;       // light, view and half vector (unit, z > 0)
+  vec3 dh_dx, dh_dy;    // screen derivatives of h (how it turns across the pixel; 0 where unknown)
   vec2 alpha_g;         // global Beckmann roughness, widened by the light cone
   vec2 alpha_l;         // one microdetail's lobe, widened by the light cone
   float density;        // microdetails per unit uv area, 10^glints.log_density
