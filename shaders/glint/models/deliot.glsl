@@ -1,6 +1,6 @@
 // The `deliot` glint model: Deliot & Belcour 2023, "Real-Time Rendering of
 // Glinty Appearances using Distributed Binomial Laws on Anisotropic Grids"
-// (Computer Graphics Forum 42(8), HPG 2023), after the authors' published
+// (Computer Graphics Forum, HPG 2023, doi:10.1111/cgf.14866), after the authors' published
 // HLSL (SampleGlints2023NDF and its noise generator). The pixel footprint is
 // the exact ellipse of the uv derivatives; the surface is covered by
 // triangular (simplex) grids rotated to the ellipse's orientation, stretched
