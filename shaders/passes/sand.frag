@@ -29,6 +29,7 @@ SandParams sand_params = SandParams(
 layout(set = 0, binding = 1, std140) uniform MaterialUBO { SandParams sand_params; };
 #endif
 layout(set = 0, binding = 2) uniform sampler2D env_map;
+#define GLINT_TABLE_BINDING 3  // the glint model's data table, when it declares one (glint/query.glsl)
 #include "common/environment.glsl"
 #include "sand/sand.glsl"
 
