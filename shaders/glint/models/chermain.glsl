@@ -12,7 +12,7 @@
 // Geometric Glint Anti-Aliasing with Normal Map Filtering" (I3D 2021),
 // contribution 1: each marginal is read from a MIP-mapped dictionary at the
 // level that the footprint of the half vector's slope selects (textureGrad).
-// glint_model truth=grains limit=beckmann checks=finite,unbiased,limit,deterministic
+// glint_model truth=grains limit=beckmann checks=finite,deterministic fails=unbiased,limit
 // glint_table size=393216
 // glint_parameter microfacet_relative_area default=1 range=0.01,1
 // glint_parameter max_anisotropy default=8 range=1,16
@@ -48,15 +48,13 @@
 // the means of level k are the first 2^k of the same list for every k. It is
 // even, tabulated on |slope| in [0, 4 sigma_dict) with 64 bins and
 // normalised to integrate to 1 over the line. Differences from the published
-// generator: the means come from pcg3d and the normal quantile instead of
-// std::default_random_engine; bin b holds the density at its centre
-// (b + 1/2) Delta (where the OpenGL sampler of the published renderer reads
-// it; the generator evaluates it at b Delta), the interpolation is linear
-// between bin centres, mirrored at slope 0 and constant in the last half
-// bin, and the normalisation is the analytic mass of the lobes within
-// [-4 sigma_dict, 4 sigma_dict], which equals the midpoint sum 2 Delta
-// sum_b f_b of this interpolant to < 1e-5 (the lobes are sampled at 1.1 s,
-// where the midpoint rule of a Gaussian is exact to ~1e-7).
+// generator: the means come from an integer hash and the normal quantile
+// instead of std::default_random_engine; bin b holds the density at its
+// centre (b + 1/2) Delta (where the OpenGL sampler of the published renderer
+// reads it; the generator evaluates it at b Delta); the interpolation is
+// linear between bin centres, mirrored at slope 0 and constant in the last
+// half bin, whose integral over a side is exactly the midpoint sum
+// Delta sum_b f_b, and that is what is normalised to 1/2.
 // For ggaa the table also holds each marginal's prefiltered levels
 // m = 1 .. 6 (32 .. 1 bins), each bin the box average of the two finer ones
 // (glGenerateMipmap's filter, which the 2021 renderer uses).
@@ -82,7 +80,6 @@
 #define CHERMAIN_SIGMA_DICT 0.35355339  // alpha_dict / sqrt(2)
 #define CHERMAIN_SLOPE_MAX 1.41421356   // 4 sigma_dict: the tabulated range of |slope|
 #define CHERMAIN_LOBE_STD 0.02          // s, one microfacet's lobe (dictionary slope units)
-#define CHERMAIN_MEAN_SALT 0x9E3779B9u
 #define CHERMAIN_CELL_SALT_A 0x85EBCA6Bu
 #define CHERMAIN_CELL_SALT_B 0xC2B2AE35u
 #define CHERMAIN_MAX_CELLS 100          // Alg. 2's guardrail: cells of the ellipse's box per level
@@ -92,21 +89,25 @@
 // Width of one bin in dictionary slope units: 4 sigma_dict / 64.
 const float CHERMAIN_BIN = CHERMAIN_SLOPE_MAX / float(CHERMAIN_BINS);
 
-// Mean i of marginal d: sigma_dict Phi^-1(u), u = (k + 1/2) 2^-24 from pcg3d.
-float chermain_mean(uint d, uint i) {
-  uint h = pcg3d(uvec3(d, i, CHERMAIN_MEAN_SALT)).x;
-  return CHERMAIN_SIGMA_DICT * normal_quantile((float(h >> 8u) + 0.5) * (1.0 / 16777216.0));
+// The 24-bit key of mean t of marginal d (d < 192, t < 2^15): Wellons'
+// "lowbias32" integer hash (two multiply-xorshift rounds) of d 2^15 + t; the
+// mean is mu = sigma_dict Phi^-1(u), u = (key + 1/2) 2^-24, and keys k and
+// 2^24 - 1 - k give -+mu (1 - u is exact). One 32-bit hash per lobe: the
+// generator visits every lobe of a marginal for each of its 127 entries.
+uint chermain_mean_key(uint d, uint t) {
+  uint x = ((d << 15u) | t) ^ 0x9E3779B9u;  // salted: key(0, 0) is not 0
+  x ^= x >> 16u;
+  x *= 0x7FEB352Du;
+  x ^= x >> 15u;
+  x *= 0x846CA68Bu;
+  x ^= x >> 16u;
+  return x >> 8u;
 }
 
-// Mass of N(c, s^2) within [-4 sigma_dict, 4 sigma_dict]: 1 unless c is
-// within 7 s of an end (then 1 - the two tails, erfc of beckmann.glsl).
-float chermain_lobe_mass(float c) {
-  float a = abs(c);
-  if (a < CHERMAIN_SLOPE_MAX - 7.0 * CHERMAIN_LOBE_STD) return 1.0;
-  const float k = 0.70710678 / CHERMAIN_LOBE_STD;  // 1 / (s sqrt(2))
-  float near = CHERMAIN_SLOPE_MAX - a, far = CHERMAIN_SLOPE_MAX + a;
-  float tail_near = near >= 0.0 ? 0.5 * erfc_nonneg(near * k) : 1.0 - 0.5 * erfc_nonneg(-near * k);
-  return max(1.0 - tail_near - 0.5 * erfc_nonneg(far * k), 0.0);
+// The folded key max(k, 2^24 - 1 - k) at or above which |mu| >= z (z >= 0):
+// (key + 1/2) 2^-24 >= Phi(z / sigma_dict) (erfc of common/beckmann.glsl).
+float chermain_key_at(float z) {
+  return (1.0 - 0.5 * erfc_nonneg(max(z, 0.0) * (0.70710678 / CHERMAIN_SIGMA_DICT))) * 16777216.0 - 0.5;
 }
 
 // Sum over the base bins b in [b_lo, b_hi] of the lobe N(c, s^2) at the bin
@@ -128,9 +129,10 @@ float chermain_lobe_bins(float c, int b_lo, int b_hi) {
 // Entry i of the dictionary (the layout above): the normalised marginal d of
 // level k, averaged over the 2^m base bins of bin j of MIP level m.
 //   f(x) = (1 / (2 M)) sum_{i<M} [g(x - mu_i) + g(x + mu_i)] / mass, M = 2^k,
-//   mass = (1 / M) sum_i P(|N(mu_i, s^2)| <= 4 sigma_dict),
+//   mass = (1 / M) sum_i Delta sum_{b=-64}^{63} g((b + 1/2) Delta - mu_i),
 // the generator's mixture (each facet "has a twin facet that has an inverted
-// slope"), normalised over the tabulated range.
+// slope"), normalised as the generator does: to a unit integral of the
+// interpolated marginal over the tabulated range.
 float glint_table_entry(uint i) {
   uint block = i / CHERMAIN_BLOCK, e = i % CHERMAIN_BLOCK;
   uint d = block % CHERMAIN_DISTS;
@@ -142,18 +144,42 @@ float glint_table_entry(uint i) {
   int width = 1 << m;
   int b_lo = j * width, b_hi = b_lo + width - 1;
   uint M = 1u << uint(k);
-  float sum = 0.0, mass = 0.0;
+  // A lobe pair +-mu reaches the bins only if |mu| lies within 7 s (7.5 s
+  // here, a margin for rounding) of their slope range: a range of folded
+  // keys, since Phi is monotone. The others are skipped before the quantile.
+  float x_lo = float(b_lo) * CHERMAIN_BIN - 7.5 * CHERMAIN_LOBE_STD;
+  float x_hi = float(b_hi + 1) * CHERMAIN_BIN + 7.5 * CHERMAIN_LOBE_STD;
+  float k_lo = chermain_key_at(x_lo), k_hi = x_hi < 6.0 * CHERMAIN_SIGMA_DICT ? chermain_key_at(x_hi) : 3e7;
+  // The normalisation: the midpoint sum of the interpolant, 2 Delta sum_b f_b
+  // over the 64 bins of each side (the integral of the interpolant, see the
+  // layout above). A lobe farther than 7.5 s from the range's ends adds
+  // Delta sum_b g((b + 1/2) Delta - mu) = 1 to within 1e-7 (the midpoint rule
+  // of a Gaussian sampled at 1.1 s); one nearer to an end is summed.
+  float k_edge = chermain_key_at(CHERMAIN_SLOPE_MAX - 7.5 * CHERMAIN_LOBE_STD);
+  float sum = 0.0, mass = float(M);
+  float x_b = (float(b_lo) + 0.5) * CHERMAIN_BIN;
   for (uint t = 0u; t < 32768u; ++t) {
     if (t >= M) break;
-    float mu = chermain_mean(d, t);
-    sum += chermain_lobe_bins(mu, b_lo, b_hi) + chermain_lobe_bins(-mu, b_lo, b_hi);
-    mass += chermain_lobe_mass(mu);
+    uint key = chermain_mean_key(d, t);
+    float kf = float(max(key, 16777215u - key));
+    bool reach = kf >= k_lo && kf <= k_hi;
+    bool edge = kf > k_edge;
+    if (!reach && !edge) continue;
+    float mu = CHERMAIN_SIGMA_DICT * normal_quantile((float(key) + 0.5) * (1.0 / 16777216.0));
+    if (reach) {
+      if (width == 1) {  // one bin (half of the entries): both lobes directly
+        vec2 z = (x_b - vec2(mu, -mu)) * (1.0 / CHERMAIN_LOBE_STD);
+        z = min(z * z, vec2(98.0));  // beyond 7 s: < 2e-21 of the peak
+        sum += (exp(-0.5 * z.x) + exp(-0.5 * z.y)) * (0.39894228 / CHERMAIN_LOBE_STD);
+      } else {
+        sum += chermain_lobe_bins(mu, b_lo, b_hi) + chermain_lobe_bins(-mu, b_lo, b_hi);
+      }
+    }
+    if (edge) mass -= 1.0 - CHERMAIN_BIN * chermain_lobe_bins(mu, -CHERMAIN_BINS, CHERMAIN_BINS - 1);
   }
   // (sum / (2 M)) / (mass / M) / width
   return mass > 0.0 ? sum / (2.0 * mass * float(width)) : 0.0;
 }
-
-#ifndef GLINT_TABLE_GENERATE
 
 // Marginal d of level k at |slope| x (dictionary units, x < 4 sigma_dict),
 // linearly interpolated between bin centres on MIP level m: mirrored at 0
@@ -347,7 +373,5 @@ vec3 glint_D(GlintQuery q) {
   if (w > 0.0) p22 += w * chermain_level(px, il + 1, uv, d0, d1);
   return vec3(p22 / (z2 * z2));
 }
-
-#endif  // GLINT_TABLE_GENERATE
 
 #endif  // GLINTLAB_GLINT_MODELS_CHERMAIN_GLSL

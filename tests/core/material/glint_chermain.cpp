@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 using namespace glintlab;
@@ -50,8 +51,8 @@ const Dictionary& dictionary() {
     EXPECT_NE(decl, nullptr);
     Dictionary d;
     if (decl) {
-      auto table = core::glint_table(ctx, *decl);
-      d.t.assign(table.begin(), table.end());
+      std::shared_ptr<const std::vector<float>> table = core::glint_table(ctx, *decl);
+      if (table) d.t = *table;
     }
     return d;
   }();
@@ -84,11 +85,11 @@ TEST(GlintChermain, TableHasTheDeclaredSize) {
 
 // Under the model's interpolation the integral over the line of a marginal
 // of n bins of width w is exactly 2 w sum_b f_b (each half line: half a bin
-// at f_0, trapezoids between the centres, half a bin at f_(n-1)). The table
-// is normalised analytically (the lobes' mass within the range); the
-// midpoint rule of a Gaussian sampled at 1.1 standard deviations differs
-// from its integral by ~1e-7, so the bound 1e-4 is fp32 summation of up to
-// 2^16 lobes and the clipped lobes at the range's end.
+// at f_0, trapezoids between the centres, half a bin at f_(n-1)). The
+// generator normalises the lobes' midpoint sums (summing those near the
+// range's end, counting the others as 1, true to ~1e-7), each entry on its
+// own; the bound 1e-4 is the fp32 accumulation of up to 2^16 lobe terms per
+// entry. A wrong lobe count, width or normalisation misses it by far more.
 TEST(GlintChermain, EveryMarginalOfEveryLevelIntegratesToOne) {
   const Dictionary& d = dictionary();
   ASSERT_EQ(d.t.size(), size_t(kLevels) * kDists * kBlock);
@@ -114,7 +115,7 @@ TEST(GlintChermain, EveryMarginalOfEveryLevelIntegratesToOne) {
 // 1 / sqrt(n s 2 sqrt(pi) f(x)) (the KDE variance f / (n s 2 sqrt(pi))).
 // The rotated product's average at radius r <= 1.5 sigma_dict is compared
 // with Beckmann alpha_dict: bound = 0.01 (the kernel's widening, < 0.4 %,
-// and the interpolation) + 6 x twice that relative error at x = r / sqrt(2)
+// and the interpolation) + 5 x twice that relative error at x = r / sqrt(2)
 // (the product of two independent marginals). A mean marginal of the wrong
 // width, count of lobes or normalisation misses it at every fine level.
 TEST(GlintChermain, RotatedProductsAverageToBeckmannOfTheDictionary) {
@@ -141,7 +142,7 @@ TEST(GlintChermain, RotatedProductsAverageToBeckmannOfTheDictionary) {
       double x = r / std::sqrt(2.0);
       double fx = std::exp(-0.5 * x * x / (kSigmaDict * kSigmaDict)) / (kSigmaDict * std::sqrt(2.0 * kPi));
       double rel_sd = 1.0 / std::sqrt(n * kLobeStd * 2.0 * std::sqrt(kPi) * fx);
-      double bound = 0.01 + 6.0 * 2.0 * rel_sd;
+      double bound = 0.01 + 5.0 * 2.0 * rel_sd;
       double rel = std::abs(avg / beck - 1.0);
       if (rel / bound > worst / std::max(worst_bound, 1e-300)) {
         worst = rel;
@@ -158,8 +159,8 @@ TEST(GlintChermain, RotatedProductsAverageToBeckmannOfTheDictionary) {
 // ggaa (Chermain et al. 2021): bin j of MIP level m is the box average of
 // bins 2j, 2j+1 of level m - 1. The table computes every MIP bin directly
 // from the lobes (the mean over its 2^m base bins), so this checks that
-// construction against the finer level's values; the bound is fp32 rounding
-// relative to the marginal's peak.
+// construction against the finer level's values; the bound 1e-4 of the
+// marginal's peak is the fp32 accumulation of both sides' entries.
 TEST(GlintChermain, PrefilteredLevelsAreTheBoxFilterOfTheFinerOnes) {
   const Dictionary& d = dictionary();
   ASSERT_EQ(d.t.size(), size_t(kLevels) * kDists * kBlock);
@@ -175,7 +176,7 @@ TEST(GlintChermain, PrefilteredLevelsAreTheBoxFilterOfTheFinerOnes) {
           double box = 0.5 * (double(fine[2 * j]) + double(fine[2 * j + 1]));
           double err = std::abs(double(coarse[j]) - box) / peak;
           worst = std::max(worst, err);
-          ASSERT_LT(err, 2e-5) << "level " << k << " marginal " << i << " mip " << m << " bin " << j;
+          ASSERT_LT(err, 1e-4) << "level " << k << " marginal " << i << " mip " << m << " bin " << j;
         }
       }
     }
