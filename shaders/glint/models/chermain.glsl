@@ -210,13 +210,17 @@ float chermain_marginal(uint d, int k, float x, float w) {
 
 // The half vector's slope footprint for ggaa: its screen derivatives
 // (d slope / dx, d slope / dy). GlintQuery carries none, so they are 0 (no
-// filtering) unless the includer defines GLINT_CHERMAIN_SLOPE_DERIVATIVES(q,
-// dx, dy) to set them.
+// filtering) unless the includer defines GLINT_CHERMAIN_SLOPE_DERIVATIVES as
+// a vec4 expression (d slope / dx, d slope / dy), which may use the query q.
 void chermain_slope_derivatives(GlintQuery q, out vec2 dx, out vec2 dy) {
   dx = vec2(0.0);
   dy = vec2(0.0);
 #ifdef GLINT_CHERMAIN_SLOPE_DERIVATIVES
-  GLINT_CHERMAIN_SLOPE_DERIVATIVES(q, dx, dy);
+  vec4 g = GLINT_CHERMAIN_SLOPE_DERIVATIVES;
+  if (all(lessThan(abs(g), vec4(1e30)))) {  // NaN and Inf: no filtering
+    dx = g.xy;
+    dy = g.zw;
+  }
 #endif
 }
 
