@@ -6,8 +6,9 @@
 // from a multiscale dictionary, scaled from the dictionary's roughness to
 // alpha and randomly rotated; the cells are averaged with elliptical weights
 // and D = P22 / cos^4(theta_h) (eq. 6). Where a cell holds more microfacets
-// than the dictionary's finest level, its P-SDF is Beckmann: the model
-// converges to Cook-Torrance with Beckmann alpha_g.
+// than the dictionary's last level describes (log4 of the count, jittered,
+// reaches L = 16), its P-SDF is Beckmann: the model converges to
+// Cook-Torrance with Beckmann alpha_g.
 // With ggaa: Chermain, Sauvage, Dischler & Dachsbacher 2021, "Real-time
 // Geometric Glint Anti-Aliasing with Normal Map Filtering" (I3D 2021),
 // contribution 1: each marginal is read from a MIP-mapped dictionary at the
@@ -22,7 +23,8 @@
 // line 4; the others are discarded); max_anisotropy: the largest major /
 // minor ratio of the footprint ellipse (Alg. 1 line 4); ggaa: the 2021
 // dictionary filtering; ggaa_kernel: its "kernel size", the factor on the
-// slope footprint (2021 sec. 4, default 0.5).
+// slope footprint (0.5 in the 2021 renderer). Defaults: the 2020 renderer's
+// (relative area 1, max anisotropy 8; the 2021 one uses 0.025 and 4).
 //
 // Mapping of glintlab's common parameters onto the method:
 //  - alpha_g -> (alpha_x, alpha_y): the Beckmann roughness the P-SDFs are
@@ -268,7 +270,7 @@ float chermain_cell_p22(ChermainPixel px, uvec2 cell, int l) {
   // lines 17-18: two marginals of level k
   uint di = min(uint(r.w.x * float(CHERMAIN_DISTS)), CHERMAIN_DISTS - 1u);
   uint dj = min(uint(r.w.y * float(CHERMAIN_DISTS)), CHERMAIN_DISTS - 1u);
-  // ggaa (2021 eq. 15 with the kernel transformed as the slope): the
+  // ggaa (2021, the kernel transformed as the slope is): the
   // footprint of each coordinate is the larger of its two screen derivatives
   // (textureGrad's rho for a 1D texture).
   vec2 gx = px.sdx * inv_scale, gy = px.sdy * inv_scale;
