@@ -8,6 +8,7 @@
 #include "core/vk/shader_compiler.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -30,8 +31,15 @@ std::map<std::string, std::shared_ptr<const std::vector<float>>>& memory_cache()
   static std::map<std::string, std::shared_ptr<const std::vector<float>>> tables;
   return tables;
 }
+// Where no run set a folder: $XDG_CACHE_HOME/glintlab (else ~/.cache/glintlab), as the Vulkan
+// driver's shader cache is kept; "" when neither is set.
+std::string default_disk_dir() {
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "glintlab").string();
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "glintlab").string();
+  return "";
+}
 std::string& disk_dir() {
-  static std::string dir;
+  static std::string dir = default_disk_dir();
   return dir;
 }
 
@@ -66,9 +74,14 @@ std::shared_ptr<const std::vector<float>> glint_table(const VkContext& ctx, cons
   if (auto it = memory_cache().find(key); it != memory_cache().end()) return it->second;
 
   std::vector<float> table;
-  const fs::path file = disk_dir().empty() ? fs::path() : fs::path(disk_dir()) / "glint-tables" / (key + ".f32");
+  auto path_in = [&](const std::string& dir) {
+    return dir.empty() ? fs::path() : fs::path(dir) / "glint-tables" / (key + ".f32");
+  };
+  const fs::path file = path_in(disk_dir()), fallback = path_in(default_disk_dir());
   const bool cached = !file.empty() && read_table(file, d.table_size, table);
-  if (!cached) table = run_compute(ctx, kTableShader, defines, {}, d.table_size, d.table_size);
+  // a table generated where no run asked for it (glint-test) serves a run too; the run keeps its copy
+  const bool found = cached || (!fallback.empty() && fallback != file && read_table(fallback, d.table_size, table));
+  if (!found) table = run_compute(ctx, kTableShader, defines, {}, d.table_size, d.table_size);
   for (size_t i = 0; i < table.size(); ++i)
     if (!std::isfinite(table[i]))
       throw ConfigError((d.file.empty() ? d.name : d.file) + ": glint_table_entry(" + std::to_string(i) +

@@ -3,7 +3,9 @@
 // glint_table_entry(i), evaluated once on the device by shaders/glint/
 // table.comp. Tables are kept by the content hash of that program (the
 // preprocessed source with every include and the defines): in memory for the
-// process, and as <dir>/glint-tables/<hash>.f32 where a cache folder is set.
+// process, and as <dir>/glint-tables/<hash>.f32 in the run's cache folder
+// (set_glint_table_cache_dir) or, where no run sets one (glint-test, the
+// tests), in $XDG_CACHE_HOME/glintlab (~/.cache/glintlab).
 // A table with a NaN or Inf entry is refused, naming the
 // model's file and the entry.
 #pragma once

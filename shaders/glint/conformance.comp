@@ -40,6 +40,10 @@ void main() {
   if (f.valid) {
     GlintRoughness r = glint_roughness(p, 0.0);
     GlintQuery q = glint_query(p, uv, dx, dy, f, r);
+#ifdef CONFORMANCE_DH_DX  // the half vector's screen derivatives, for a test (0 in the suite)
+    q.dh_dx = CONFORMANCE_DH_DX;
+    q.dh_dy = CONFORMANCE_DH_DY;
+#endif
     D = glint_D(q);
     limit = glint_limit_D(q);
   }

@@ -210,20 +210,15 @@ float chermain_marginal(uint d, int k, float x, float w) {
   return v;
 }
 
-// The half vector's slope footprint for ggaa: its screen derivatives
-// (d slope / dx, d slope / dy). GlintQuery carries none, so they are 0 (no
-// filtering) unless the includer defines GLINT_CHERMAIN_SLOPE_DERIVATIVES as
-// a vec4 expression (d slope / dx, d slope / dy), which may use the query q.
+// The half vector's slope footprint for ggaa: the screen derivatives of its
+// slope s = h.xy / h.z, ds = (dh.xy h.z - h.xy dh.z) / h.z^2, from those of h
+// in the query (0 where unknown: no filtering; NaN or Inf: none either).
 void chermain_slope_derivatives(GlintQuery q, out vec2 dx, out vec2 dy) {
-  dx = vec2(0.0);
-  dy = vec2(0.0);
-#ifdef GLINT_CHERMAIN_SLOPE_DERIVATIVES
-  vec4 g = GLINT_CHERMAIN_SLOPE_DERIVATIVES;
-  if (all(lessThan(abs(g), vec4(1e30)))) {  // NaN and Inf: no filtering
-    dx = g.xy;
-    dy = g.zw;
-  }
-#endif
+  float z = q.h.z;
+  vec4 g = vec4(q.dh_dx.xy * z - q.h.xy * q.dh_dx.z, q.dh_dy.xy * z - q.h.xy * q.dh_dy.z) / (z * z);
+  bool ok = all(lessThan(abs(g), vec4(1e30)));
+  dx = ok ? g.xy : vec2(0.0);
+  dy = ok ? g.zw : vec2(0.0);
 }
 
 // What every cell of a query shares.

@@ -40,15 +40,11 @@ constexpr double kLobeStd = 0.02;
 const double kPi = std::acos(-1.0);
 
 // The table once per machine: every test of this file runs as its own
-// process under ctest, and generating it takes ~45 s of CPU on lavapipe, so
-// it is kept in the test cache folder (XDG_CACHE_HOME, which ctest sets)
-// like a run keeps it beside its truths; the folder is unset afterwards.
+// process under ctest, and generating it takes ~45 s of CPU on lavapipe; it
+// is kept in $XDG_CACHE_HOME/glintlab (which ctest sets to the build's cache
+// folder), where glintlab keeps a table no run asked for.
 std::shared_ptr<const std::vector<float>> chermain_table(const core::VkContext& ctx, const core::GlintModelDecl& d) {
-  const char* xdg = std::getenv("XDG_CACHE_HOME");
-  if (xdg && *xdg) core::set_glint_table_cache_dir(std::string(xdg) + "/glintlab-test");
-  auto t = core::glint_table(ctx, d);
-  core::set_glint_table_cache_dir("");
-  return t;
+  return core::glint_table(ctx, d);
 }
 
 size_t mip_offset(int m) { return size_t(kBlock - (kBlock >> m)); }
@@ -221,14 +217,14 @@ TEST(GlintChermain, LevelZeroIsOneLobePairAndLevelFifteenIsSmooth) {
 }
 
 // ggaa in the model (glint/conformance.comp with the model's defines and its
-// table): a slope footprint of 1e3 (GLINT_CHERMAIN_SLOPE_DERIVATIVES, the
-// hook for an includer that has the half vector's screen derivatives)
+// table): a slope footprint of 1e3 (the half vector's screen derivatives
+// dh_dx = (1e3, 0, 0), dh_dy = (0, 1e3, 0) at h = n, set by the harness)
 // selects MIP level 6 of every marginal, the constant 1 / (8 sigma_dict), so
 // at h = n every cell's P-SDF is (1 / (8 sigma_dict))^2 (alpha_dict /
 // alpha)^2 = 0.125 for alpha = 0.5 whatever the cell's marginals, rotation
 // and weight: D = 0.125. log_density -3 puts every cell on a dictionary
-// level (l_dist ~ -15 before the jitter). Without the hook, ggaa on and off
-// give the same bits (a zero footprint reads MIP level 0).
+// level (l_dist ~ -15 before the jitter). Without derivatives, ggaa on and
+// off give the same bits (a zero footprint reads MIP level 0).
 TEST(GlintChermain, GgaaReadsThePrefilteredLevels) {
   auto& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
@@ -257,12 +253,13 @@ TEST(GlintChermain, GgaaReadsThePrefilteredLevels) {
   }
   std::vector<std::string> defines = core::glint_model_defines(*decl);
   auto plain = core::run_compute(ctx, "glint/conformance.comp", defines, in, n * kOut, uint32_t(n), table.get());
-  defines.push_back("GLINT_CHERMAIN_SLOPE_DERIVATIVES=vec4(1e3,0.0,0.0,1e3)");
+  defines.push_back("CONFORMANCE_DH_DX=vec3(1e3,0.0,0.0)");
+  defines.push_back("CONFORMANCE_DH_DY=vec3(0.0,1e3,0.0)");
   auto filtered = core::run_compute(ctx, "glint/conformance.comp", defines, in, n * kOut, uint32_t(n), table.get());
   double worst = 0.0;
   for (size_t i = 0; i < n; i += 2) {
     EXPECT_EQ(plain[i * kOut], plain[(i + 1) * kOut]) << i;  // ggaa off = on without a footprint
-    EXPECT_EQ(plain[i * kOut], filtered[i * kOut]) << i;     // the hook acts only with ggaa on
+    EXPECT_EQ(plain[i * kOut], filtered[i * kOut]) << i;     // the derivatives act only with ggaa on
     double D = filtered[(i + 1) * kOut];
     worst = std::max(worst, std::abs(D / 0.125 - 1.0));
     EXPECT_NEAR(D, 0.125, 0.125 * 3e-4) << i;
