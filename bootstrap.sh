@@ -7,6 +7,7 @@ PKGS=(
   glslang-dev glslang-tools spirv-tools
   libglm-dev
   libopenimageio-dev openimageio-tools libopenexr-dev libdeflate-dev  # EXR sequences' fast path (experiments/measure/)
+  libpng-dev  # sRGB PNGs read without OpenImageIO (experiments/measure/png_file.h)
   libopencolorio-dev opencolorio-tools
   libgtest-dev
   nlohmann-json3-dev libcli11-dev libxxhash-dev libopencv-video-dev ninja-build

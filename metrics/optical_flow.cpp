@@ -1,8 +1,5 @@
 #include "metrics/optical_flow.h"
 
-#include <opencv2/core.hpp>
-#include <opencv2/video/tracking.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/util/flow_plugin.h"
 #include "metrics/parallel.h"
 
 namespace glintlab::metrics {
@@ -32,11 +30,12 @@ void check_encoding(const FlowOptions& o) {
                                 std::to_string(o.encode_max) + ")");
 }
 
+// OpenCV's PRESET_ULTRAFAST, PRESET_FAST, PRESET_MEDIUM (core/util/flow_plugin.h).
 int cv_preset(FlowPreset p) {
   switch (p) {
-    case FlowPreset::kUltrafast: return cv::DISOpticalFlow::PRESET_ULTRAFAST;
-    case FlowPreset::kFast: return cv::DISOpticalFlow::PRESET_FAST;
-    case FlowPreset::kMedium: return cv::DISOpticalFlow::PRESET_MEDIUM;
+    case FlowPreset::kUltrafast: return 0;
+    case FlowPreset::kFast: return 1;
+    case FlowPreset::kMedium: return 2;
   }
   throw std::invalid_argument("estimate_motion: unknown preset " + std::to_string(int(p)));
 }
@@ -60,21 +59,37 @@ bool dis_size_ok(int w, int h, int patch, int finest) {
 void apply_thread_cap() {
   static std::once_flag once;
   std::call_once(once, [] {
-    if (std::getenv("GLINTLAB_METRIC_THREADS")) cv::setNumThreads(int(metric_threads()));
+    if (std::getenv("GLINTLAB_METRIC_THREADS")) flow::api().set_threads(int(metric_threads()));
   });
 }
 
 inline float finite_or_zero(float v) { return std::isfinite(v) ? v : 0.0f; }
 
-// Bilinear sample of a CV_32FC2 flow at (x, y), 0 <= x <= w-1, 0 <= y <= h-1.
-cv::Vec2f sample_flow(const cv::Mat& flow, double x, double y) {
-  const int w = flow.cols, h = flow.rows;
+// A flow image: 2 floats (x, y) a pixel, rows top first.
+struct Flow2 {
+  float x, y;
+};
+
+// Bilinear sample of a w x h flow at (x, y), 0 <= x <= w-1, 0 <= y <= h-1, in float as OpenCV's Vec2f
+// arithmetic does it (component by component, the same operations in the same order).
+Flow2 sample_flow(const std::vector<float>& flow, int w, int h, double x, double y) {
   const int x0 = std::min(int(x), w - 1), y0 = std::min(int(y), h - 1);
   const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
   const float fx = float(x - x0), fy = float(y - y0);
-  const cv::Vec2f* r0 = flow.ptr<cv::Vec2f>(y0);
-  const cv::Vec2f* r1 = flow.ptr<cv::Vec2f>(y1);
-  return (r0[x0] * (1 - fx) + r0[x1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x1] * fx) * fy;
+  auto at = [&](int xx, int yy, int c) { return flow[(std::size_t(yy) * w + xx) * 2 + c]; };
+  Flow2 r{};
+  float* out[2] = {&r.x, &r.y};
+  for (int c = 0; c < 2; ++c)
+    *out[c] = (at(x0, y0, c) * (1 - fx) + at(x1, y0, c) * fx) * (1 - fy) + (at(x0, y1, c) * (1 - fx) + at(x1, y1, c) * fx) * fy;
+  return r;
+}
+
+// a . a in float, as cv::Vec2f::dot.
+float dot(Flow2 a) {
+  float s = 0.0f;
+  s += a.x * a.x;
+  s += a.y * a.y;
+  return s;
 }
 
 }  // namespace
@@ -134,10 +149,12 @@ Image estimate_motion(const Image& luminance_prev, const Image& luminance_now, c
   check_encoding(options);
   const int w = luminance_now.width, h = luminance_now.height;
 
-  cv::Ptr<cv::DISOpticalFlow> dis = cv::DISOpticalFlow::create(cv_preset(options.preset));
-  if (!dis_size_ok(w, h, dis->getPatchSize(), dis->getFinestScale())) {
-    const int need_lo = dis->getPatchSize() << dis->getFinestScale();
-    const int need_hi = int(std::ceil(4.0 * dis->getPatchSize() * std::pow(2.0, dis->getFinestScale() - 0.5)));
+  const flow::Api& dis = flow::api();
+  int patch = 0, finest = 0;
+  dis.geometry(cv_preset(options.preset), &patch, &finest);
+  if (!dis_size_ok(w, h, patch, finest)) {
+    const int need_lo = patch << finest;
+    const int need_hi = int(std::ceil(4.0 * patch * std::pow(2.0, finest - 0.5)));
     throw std::invalid_argument("estimate_motion: " + size_text(luminance_now) +
                                 " is too small for DIS optical flow with this preset (needs >= " +
                                 std::to_string(need_lo) + " px on the short side and >= " + std::to_string(need_hi) +
@@ -148,35 +165,30 @@ Image estimate_motion(const Image& luminance_prev, const Image& luminance_now, c
   const double m = flow_exposure(luminance_prev, luminance_now, options.channel);
   std::vector<std::uint8_t> prev8 = encode_for_flow(luminance_prev, options.channel, m, options);
   std::vector<std::uint8_t> now8 = encode_for_flow(luminance_now, options.channel, m, options);
-  const cv::Mat I_prev(h, w, CV_8UC1, prev8.data()), I_now(h, w, CV_8UC1, now8.data());
 
   // back: on frame t's grid, I_now(p) ≈ I_prev(p + back(p)), so v = -back.
-  cv::Mat back, fwd;
-  try {
-    dis->calc(I_now, I_prev, back);
-    if (options.forward_backward) dis->calc(I_prev, I_now, fwd);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(std::string("estimate_motion: OpenCV DIS optical flow failed: ") + e.what());
-  }
+  std::vector<float> back(std::size_t(w) * h * 2), fwd(options.forward_backward ? back.size() : 0);
+  dis.calc(cv_preset(options.preset), now8.data(), prev8.data(), w, h, back.data(),
+          options.forward_backward ? fwd.data() : nullptr);
 
   Image motion(w, h, 4, 1.0f);
   parallel_for(h, [&](long yl) {
     const int y = int(yl);
-    const cv::Vec2f* b = back.ptr<cv::Vec2f>(y);
+    const float* b = back.data() + std::size_t(y) * w * 2;
     float* out = motion.px(0, y);
     for (int x = 0; x < w; ++x, out += 4) {
-      const cv::Vec2f wb = b[x];
-      out[0] = -wb[0];
-      out[1] = -wb[1];
+      const Flow2 wb{b[2 * x], b[2 * x + 1]};
+      out[0] = -wb.x;
+      out[1] = -wb.y;
       if (!options.forward_backward) continue;
-      const double qx = x + double(wb[0]), qy = y + double(wb[1]);
+      const double qx = x + double(wb.x), qy = y + double(wb.y);
       bool consistent = std::isfinite(qx) && std::isfinite(qy) && qx >= 0.0 && qy >= 0.0 && qx <= w - 1.0 &&
                         qy <= h - 1.0;
       if (consistent) {
-        const cv::Vec2f wf = sample_flow(fwd, qx, qy);
-        const double sx = double(wb[0]) + wf[0], sy = double(wb[1]) + wf[1];
+        const Flow2 wf = sample_flow(fwd, w, h, qx, qy);
+        const double sx = double(wb.x) + wf.x, sy = double(wb.y) + wf.y;
         const double lhs = sx * sx + sy * sy;
-        const double rhs = 0.01 * (double(wb.dot(wb)) + double(wf.dot(wf))) + 0.5;
+        const double rhs = 0.01 * (double(dot(wb)) + double(dot(wf))) + 0.5;
         consistent = lhs <= rhs;
       }
       if (!consistent) out[3] = -1.0f;

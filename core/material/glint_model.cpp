@@ -45,7 +45,9 @@ bool is_identifier(const std::string& s) {
 }
 
 const char* kModelSyntax =
-    "// glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic";
+    "// glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic "
+    "[fails=CHECK,...]";
+const char* kTableSyntax = "// glint_table size=N  (1 <= N <= 2097152 floats)";
 const char* kParameterSyntax =
     "// glint_parameter NAME default=VALUE range=LO,HI  or  // glint_parameter NAME default=true|false type=bool";
 
@@ -75,7 +77,7 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
     std::istringstream words(line);
     std::string slashes, kind;
     words >> slashes >> kind;
-    if (slashes != "//" || (kind != "glint_model" && kind != "glint_parameter")) continue;
+    if (slashes != "//" || (kind != "glint_model" && kind != "glint_parameter" && kind != "glint_table")) continue;
     std::vector<std::string> fields;
     for (std::string w; words >> w;) fields.push_back(w);
     if (kind == "glint_model") {
@@ -88,16 +90,24 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
           d.truth = value;
         } else if (key == "limit" && (value == "beckmann" || value == "ggx")) {
           d.limit = value;
-        } else if (key == "checks" && !value.empty()) {
-          d.checks = split(value, ',');
+        } else if ((key == "checks" || key == "fails") && !value.empty()) {
+          std::vector<std::string>& list = key == "checks" ? d.checks : d.fails;
+          list = split(value, ',');
           auto all = glint_check_names();
-          for (const auto& c : d.checks)
+          for (const auto& c : list)
             if (std::find(all.begin(), all.end(), c) == all.end())
               fail("unknown check \"" + c + "\" (allowed: finite, unbiased, limit, deterministic)", kModelSyntax);
         } else {
           fail("unknown or empty field \"" + f + "\" (limit: beckmann or ggx)", kModelSyntax);
         }
       }
+    } else if (kind == "glint_table") {
+      double n = 0.0;
+      if (d.table_size != 0) fail("a second glint_table line", kTableSyntax);
+      if (fields.size() != 1 || fields[0].rfind("size=", 0) != 0 || !parse_double(fields[0].substr(5), n) ||
+          n < 1.0 || n > double(kMaxGlintTableSize) || n != std::floor(n))
+        fail("the table size must be a whole number of floats in range", kTableSyntax);
+      d.table_size = uint32_t(n);
     } else {
       if (fields.empty() || !is_identifier(fields[0])) fail("a parameter needs a GLSL identifier as its name", kParameterSyntax);
       GlintParameter p;
@@ -142,6 +152,9 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
   }
   if (!declared)
     throw ConfigError(where + ": no glint_model declaration line; expected a comment line " + kModelSyntax);
+  for (const auto& c : d.fails)
+    if (std::find(d.checks.begin(), d.checks.end(), c) != d.checks.end())
+      throw ConfigError(where + ": check \"" + c + "\" is both in checks= and in fails=; expected " + kModelSyntax);
   return d;
 }
 

@@ -33,7 +33,8 @@ struct GlintParameter {
 std::vector<std::string> glint_check_names();
 
 // A model's declaration:
-//   // glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic
+//   // glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic [fails=CHECK,...]
+//   // glint_table size=N            (optional: a data table, see core/material/glint_table.h)
 struct GlintModelDecl {
   std::string name;  // built-in: the file name without .glsl; a user file: its path as given
   std::string file;  // built-in: relative to the shader folder; a user file: absolute
@@ -44,11 +45,20 @@ struct GlintModelDecl {
   std::string truth = "self";
   std::string limit = "beckmann";   // the smooth limit (or "ggx", GGX with alpha_g): the far field and the checks
   std::vector<std::string> checks;  // which of glint_check_names() apply
+  // Checks the published method fails by its own design: run and reported, and
+  // expected to fail (glint-test reports it when one passes); none also in checks.
+  std::vector<std::string> fails;
+  // Floats of the model's data table (0: none): the file defines
+  // float glint_table_entry(uint i) and glint_D reads glint_table[i].
+  uint32_t table_size = 0;
   std::vector<GlintParameter> parameters;  // in declaration order = slot order in the material block
   std::string content_hash;                // of the file's bytes
 
   const GlintParameter* parameter(const std::string& name) const;
 };
+
+// Largest data table a model may declare (floats, 8 MiB: one dispatch of 64-wide groups).
+inline constexpr uint32_t kMaxGlintTableSize = 1u << 21;
 
 // Most parameters a model may declare (SandParams.glint_parameters, 2 vec4).
 inline constexpr size_t kMaxGlintParameters = 8;

@@ -47,6 +47,9 @@ MaterialProgram sand_program(const SandParams& params, const SandFeatures& needs
   std::memcpy(p.block.data(), &gpu, sizeof gpu);
   p.defines.push_back(material_constants_define(p.block));
   p.frame_lighting_constants = true;
+  const bool table = std::any_of(p.defines.begin(), p.defines.end(),
+                                 [](const std::string& d) { return d.rfind("GLINT_TABLE_SIZE=", 0) == 0; });
+  if (const GlintModelDecl* d = shaded.glint_decl(); d && table) p.glint_table_model = *d;
   return p;
 }
 

@@ -8,6 +8,7 @@
 #include "core/material/sand_material.h"
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct MaterialProgram {
   // bounds-checked load per eight fragments there); on any device it changes
   // results only by the compiler's constant folding (ulps).
   bool frame_lighting_constants = false;
+  // The glint model whose data table the fragment shader reads (set 0,
+  // binding 3; core/material/glint_table.h), when the program builds in a
+  // model that declares one.
+  std::optional<GlintModelDecl> glint_table_model;
 
   // XXH3-128 of the preprocessed fragment source (all includes), the defines
   // and the block: equal keys render equal images.

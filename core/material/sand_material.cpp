@@ -195,7 +195,20 @@ SandParams SandParams::from_json(JsonReader& r) {
   p.sigmoid_a = get(r, kSigA, p.sigmoid_a);
   p.sigmoid_b = get(r, kSigB, p.sigmoid_b);
   p.ior = get(r, kIor, p.ior);
-  if (r.has("glint_model") && r.raw("glint_model").is_object()) {
+  if (r.has("glint_model") && r.raw("glint_model").is_object() && r.raw("glint_model").contains("name")) {
+    // a built-in model measured against another truth: {"name": model, "truth": a model whose truth is "self"}
+    JsonReader g = r.child("glint_model");
+    std::vector<std::string> names;
+    for (const auto& m : builtin_glint_models()) names.push_back(m.name);
+    GlintModelDecl decl = *find_builtin_glint_model(g.get_enum("name", names));
+    std::vector<std::string> truths{"self"};
+    for (const auto& m : builtin_glint_models())
+      if (m.truth == "self") truths.push_back(m.name);
+    decl.truth = g.get_enum("truth", decl.truth, truths);
+    g.finish();
+    p.glint_model = decl.name;
+    p.glint_file = std::make_shared<const GlintModelDecl>(std::move(decl));
+  } else if (r.has("glint_model") && r.raw("glint_model").is_object()) {
     // a user's model file: {"file": path relative to the experiment file, "truth", "parameters"}
     JsonReader g = r.child("glint_model");
     const std::string file = g.get_string("file");
@@ -346,7 +359,7 @@ SandParamsGPU SandParams::pack() const {
   g.sig_b = float(sigmoid_b);
   g.appendix_compat = appendix_compat;
   g.fresnel_half_vector = fresnel_half_vector == "light_view" ? 1u : 0u;  // SAND_FRESNEL_*
-  g.glint_model = glint_file ? glint_model_gpu_id("") : glint_model_gpu_id(glint_model);  // SAND_GLINT_*
+  g.glint_model = glint_file && !glint_file->builtin ? glint_model_gpu_id("") : glint_model_gpu_id(glint_model);  // SAND_GLINT_*
   g.energy_consistent = energy_consistent ? 1u : 0u;
   g.glint_intensity = float(glints.intensity);
   g.glint_light_cone = glints.light_cone ? float(*glints.light_cone) : -1.0f;  // < 0: the sun's
@@ -406,6 +419,7 @@ std::vector<std::string> glint_model_defines(const GlintModelDecl& d) {
   std::vector<std::string> out = {"GLINT_MODEL_INCLUDE", std::string(kIncludeAliasPrefix) + "GLINT_MODEL_FILE=" + d.file};
   out.push_back("GLINT_MODEL_HASH=h" + d.content_hash);  // the file's bytes (an identifier: h + hex) in every key
   if (d.limit == "ggx") out.push_back("GLINT_LIMIT_GGX");
+  if (d.table_size) out.push_back("GLINT_TABLE_SIZE=" + std::to_string(d.table_size) + "u");
   if (!fields.empty()) {
     out.push_back("GLINT_MODEL_PARAMETERS=" + fields);
     out.push_back("GLINT_MODEL_PARAMETER_VALUES=" + values);

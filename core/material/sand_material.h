@@ -118,7 +118,8 @@ struct SandParams {
   double sigmoid_b = 1.3;     // eq. 4.37 shift, distance units, [0, 1e7]
   double ior = 1.458;         // grain IOR (silica), [1, 3]
   std::string glint_model = kGlintModelKajs;  // one of glint_model_names(), or a user file's name
-  // The declaration of a user's model file ("glint_model": {"file": ...}); null for the others.
+  // The declaration of a user's model file ("glint_model": {"file": ...}) or of a built-in model
+  // with another truth ({"name": ..., "truth": ...}); null for the others.
   std::shared_ptr<const GlintModelDecl> glint_file;
   std::string fresnel_half_vector = "macro_normal";  // "macro_normal" | "light_view"
   uint32_t appendix_compat = 0;  // SandCompat bits; 0 = chapter 4 everywhere

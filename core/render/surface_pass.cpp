@@ -1,6 +1,7 @@
 #include "core/render/surface_pass.h"
 
 #include "core/render/chunk_culling.h"
+#include "core/material/glint_table.h"
 #include "core/scene/mesh.h"
 #include "core/vk/shader_compiler.h"
 
@@ -179,6 +180,8 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+  if (opt_.program.glint_table_model)  // the glint model's data table, read-only (glint/query.glsl)
+    bindings.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   set_layout_ = make_set_layout(ctx, bindings);
   layout_ = make_pipeline_layout(ctx, set_layout_.get(), sizeof(SamplePush),
                                  VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
@@ -218,6 +221,13 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
                           mat_bytes);
   write_image_descriptor(ctx, descriptors_.set, 2, scene.env_map().view(), scene.env_sampler(),
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  if (opt_.program.glint_table_model) {
+    auto table = glint_table(ctx, *opt_.program.glint_table_model);
+    const size_t bytes = table->size() * sizeof(float);
+    glint_table_ = Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    glint_table_.upload(table->data(), bytes);
+    write_buffer_descriptor(ctx, descriptors_.set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, glint_table_.handle(), bytes);
+  }
 
   if (opt_.supersample > 1 || sum_opaque_) {
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};

@@ -119,6 +119,7 @@ class SurfacePass final : public Pass {
   bool sum_opaque_ = false;  // several samples, each drawn opaque and added by a blended draw
   bool opaque_ = false;      // one opaque draw per sample (single_sample or sum_opaque_)
   Buffer frame_ubo_, material_ubo_;
+  Buffer glint_table_;  // the glint model's data table, when it has one
   DescriptorSet descriptors_;
   int width_ = 0, height_ = 0;
   // supersample > 1 or a sum of opaque samples: the pass's own images (at f

@@ -5,9 +5,8 @@
 // (`check`, `list`, `--help`, `compare` and `measure --no-report` of plain OpenEXR files, which the
 // OpenEXR core library reads: experiments/measure/exr_scanlines.h) never load them.
 //
-// The library is found as the program's other libraries are (the RUNPATH of the program or module
-// that calls: beside build/glintlab in the build tree, PREFIX/lib/glintlab when installed). A library
-// that cannot be loaded is an IoError naming it and dlerror()'s reason. Each function has the
+// The library is found and loaded as core/util/plugin.h says. A library that cannot be loaded is an
+// IoError naming it and dlerror()'s reason. Each function has the
 // behaviour, messages and exceptions of the code it came from (named beside it).
 #pragma once
 

@@ -8,7 +8,8 @@
 //   limit          one evaluation at 10^14 per uv area over a 1e-3 footprint vs D_g (bound 3 %)
 //   deterministic  values that differ between two identical dispatches (bound 0)
 //   LOD coherence, shift coherence: figures (correlations), no bound.
-// Checks a model's declaration does not name are reported as not applying.
+// Checks a model's declaration does not name are reported as not applying;
+// checks it names in fails= are expected to fail (and reported if they pass).
 #pragma once
 
 #include "core/material/glint_model.h"
@@ -25,6 +26,9 @@ namespace glintlab {
 struct GlintCheckResult {
   std::string name;
   bool applies = true;  // declared by the model (figures always apply)
+  // Declared in fails=: the published method fails it by design; the suite
+  // passes when it fails and flags it when it passes.
+  bool expected_failure = false;
   bool figure_only = false;
   bool pass = true;
   double figure = 0.0;

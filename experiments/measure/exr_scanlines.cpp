@@ -1,4 +1,5 @@
 #include "experiments/measure/exr_scanlines.h"
+#include "experiments/measure/png_file.h"
 
 #include "metrics/color/image_io.h"
 
@@ -413,6 +414,8 @@ Image read_image_file(const std::string& path, std::string* colorspace_tag, int*
       return img;
     }
   }
+  Image png;
+  if (read_plain_png(path, png, colorspace_tag, file_channels)) return png;
   return metrics::read_image(path, colorspace_tag, file_channels);
 }
 

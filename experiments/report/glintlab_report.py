@@ -38,6 +38,9 @@ import subprocess
 import sys
 import traceback
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import glintlab_pareto  # noqa: E402  (beside this file: here and where installed)
+
 EXIT_OK, EXIT_BAD_INPUT, EXIT_IO, EXIT_INTERNAL, EXIT_MISSING_MODULE = 0, 2, 4, 5, 10
 
 _missing = []
@@ -73,73 +76,10 @@ class BadInput(Exception):
 
 
 # ------------------------------------------------------------------ metrics
-# name -> (label, direction, explanation). direction: "min" lower is better,
-# "max" higher is better, "one" closest to 1 is best, "ref" closest to the
-# reference's value. The unit comes from summary.json "units". Where summary.json has "metric_info",
-# its label, direction, description and unit of a metric take precedence (use_metric_info).
-METRICS = {
-    "deltaE2000": ("ΔE00", "min",
-                   "CIEDE2000 colour difference of each pixel against the reference, averaged over the frame. "
-                   "About 1 is a just-noticeable difference between flat patches side by side; lower is better."),
-    "deltaEITP": ("ΔE_ITP", "min",
-                  "ITU-R BT.2124 colour difference, built for HDR (scene Y = 1 is shown at 100 cd/m²); "
-                  "1 is about one just-noticeable step. Lower is better."),
-    "flip": ("FLIP", "min",
-             "How different the frame looks from the reference when one flips between them (HDR-FLIP, "
-             "Andersson et al. 2020/2021), per-pixel mean in [0, 1]; 0 = indistinguishable. Lower is better."),
-    "psnr": ("PSNR", "max",
-             "Peak signal-to-noise ratio of luminance (peak 1) in dB. Higher is better; it rewards blur more "
-             "than the perceptual metrics do."),
-    "relative": ("relative error", "min",
-                 "Mean |Y_test − Y_ref| / (Y_ref + 0.01): luminance error relative to the reference. Lower is better."),
-    "flicker_ratio": ("flicker ratio", "one",
-                      "How much the frame changes between consecutive frames, along the motion, compared with how "
-                      "much the reference changes: 1 = as stable as the truth, above 1 = flickers more than the "
-                      "truth (aliasing), below 1 = changes less (blur, ghosting, history lag). Best is closest to 1; "
-                      "the plots rank |ln(ratio)|, so 0.5 and 2 count as equally far off."),
-    "temporal_error": ("temporal error", "min",
-                       "Mean |e_t − e_(t−1)| with e = PQ(test) − PQ(reference) at a fixed pixel: the part of the "
-                       "frame-to-frame change that the reference does not have. 0 = the error is constant over "
-                       "time. Lower is better."),
-    "temporal_error_mc": ("temporal error (motion-compensated)", "min",
-                          "The temporal error measured along the motion instead of at a fixed pixel: the change "
-                          "that does not match the truth's. This report ranks temporal stability by it. Lower is "
-                          "better."),
-    "flicker_excess": ("flicker excess", "min",
-                       "The change along the motion the test has beyond the truth's, per pixel and one-sided, both "
-                       "frames low-passed at the eye's resolution (σ = 2 px) first, as Weber contrast: 0 = no "
-                       "added flicker. “Twinkles too much”. Lower is better."),
-    "temporal_lag": ("temporal lag", "min",
-                     "The truth's change along the motion that the test lacks (one-sided, low-passed as flicker "
-                     "excess): history lag and ghosting. “Smooth but wrong”. Lower is better."),
-    "flicker_excess_fixed": ("flicker excess (fixed gaze)", "min",
-                             "Flicker excess at a fixed pixel instead of along the motion: what an eye that does "
-                             "not follow the surface sees. Screen-fixed artefacts have excess along the motion "
-                             "only. Lower is better."),
-    "flicker_contrast": ("flicker contrast", "min",
-                         "The test's own change along the motion as Weber contrast against its own low-passed "
-                         "luminance; needs no reference (what `measure` gives without one). Lower is steadier."),
-    "frame_diff_ratio": ("frame-difference ratio", "one",
-                         "Mean |ΔT| / mean |ΔR| between consecutive frames at a fixed pixel (PQ): like the flicker "
-                         "ratio but without following the motion. Best is closest to 1."),
-    "pooled_error": ("pooled error", "min",
-                     "RMS difference of 8×8-pixel block means of luminance: the error that survives spatial "
-                     "averaging (brightness bias, missing or extra glint energy), blind to per-pixel noise. "
-                     "Lower is better."),
-    "glint_density_test": ("glint density", "ref",
-                           "Pixels brighter than 4× their local 15×15 mean, per 1000 pixels. Compare with the "
-                           "reference's density (next column): best is closest to it."),
-    "glint_density_ratio": ("glint density ratio", "one",
-                            "The test's mean glint density over the reference's (means over the frames): 1 keeps "
-                            "the truth's sparkle, below 1 erases glints, above 1 adds them. Best is closest to 1."),
-    "glint_density_ref": ("glint density of the reference", "none",
-                          "The same count in the reference frames."),
-    "glint_hist_emd_oct": ("glint histogram EMD", "min",
-                           "Earth mover's distance between the glint-intensity histograms of test and reference, in "
-                           "octaves (factors of 2 of intensity). Lower is better."),
-    "nonfinite_pixels": ("NaN/Inf pixels", "min", "Pixels that are NaN or infinite (a defect: should be 0)."),
-    "negative_pixels": ("negative pixels", "min", "Pixels with a finite negative value (a defect: should be 0)."),
-}
+# What a metric is -- its label, direction ("min" lower is better, "max" higher is better, "one" closest
+# to 1, "ref" closest to the reference's value, "none" not ranked), description and unit -- is read from
+# summary.json "metric_info", which the run writes from the metric table (metrics/metric_registry.cpp);
+# this file keeps no list of its own. Which metrics the report's table and panels show is its choice:
 TABLE_METRICS = ["deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag", "flicker_ratio",
                  "glint_density_ratio", "flicker_excess_fixed", "temporal_error", "flicker_contrast", "deltaEITP", "psnr",
                  "pooled_error", "glint_density_test", "glint_density_ref", "glint_hist_emd_oct", "nonfinite_pixels",
@@ -154,8 +94,8 @@ AA_MARKERS = {"none": "o", "ssaa": "s", "taa": "^"}
 
 
 DIRECTIONS = ("min", "max", "one", "ref", "none")
-# summary.json "metric_info" ({metric: {"label", "direction", "description", "unit", ...}}), where the
-# run has one: its fields take precedence over METRICS; use_metric_info sets it for the run reported.
+# summary.json "metric_info" ({metric: {"label", "direction", "description", "unit", ...}}) of the run
+# reported (use_metric_info). A metric it lacks is shown by its name, ranked lower-is-better.
 METRIC_INFO = {}
 
 
@@ -175,16 +115,16 @@ def use_metric_info(summary):
 
 
 def label_of(name):
-    return METRIC_INFO.get(name, {}).get("label") or METRICS.get(name, (name,))[0]
+    return METRIC_INFO.get(name, {}).get("label") or name
 
 
 def direction_of(name):
-    return METRIC_INFO.get(name, {}).get("direction") or METRICS.get(name, ("", "min"))[1]
+    return METRIC_INFO.get(name, {}).get("direction") or "min"
 
 
 def description_of(name):
-    """The metric's explanation, or None where neither metric_info nor METRICS has one."""
-    return METRIC_INFO.get(name, {}).get("description") or (METRICS[name][2] if name in METRICS else None)
+    """The metric's explanation, or None where metric_info has none."""
+    return METRIC_INFO.get(name, {}).get("description")
 
 
 def unit_of(units, name, default=""):
@@ -381,12 +321,10 @@ def pareto_front(points, floors=None):
     non-dominated points sorted by x."""
     floors = floors or {}
 
-    def dominates(q, p):
-        f = max(floors.get(q[2]) or 0.0, floors.get(p[2]) or 0.0)
-        return q[0] <= p[0] and q[1] <= p[1] + f and (q[0] < p[0] or q[1] < p[1] - f)
+    def slack(q, p):  # the cost is exact; the error is compared up to the larger floor
+        return (0.0, max(floors.get(q[2]) or 0.0, floors.get(p[2]) or 0.0))
 
-    front = [p for p in points if not any(dominates(q, p) for q in points if q is not p)]
-    return sorted(front, key=lambda p: (p[0], p[1]))
+    return sorted(glintlab_pareto.front(points, lambda p: (p[0], p[1]), slack), key=lambda p: (p[0], p[1]))
 
 
 def floor_items(reference):
@@ -860,10 +798,11 @@ class Report:
             present.update((v.get("metrics") or {}).keys())
         pooled = sorted({int(k.rsplit("_", 1)[1]) for k in present
                          if k.startswith(("pooled_bias_", "pooled_rms_")) and k.rsplit("_", 1)[1].isdigit()})
-        rest = sorted(k for k in present if k not in METRICS and not k.endswith("_max")
+        first = TABLE_METRICS + ["relative", "frame_diff_ratio"]
+        rest = sorted(k for k in present if k not in first and not k.endswith("_max")
                       and not k.startswith(("pooled_bias_", "pooled_rms_")))
-        # The report's own order first, then what metric_info alone describes, then the rest by name.
-        order = [m for m in TABLE_METRICS + ["relative", "frame_diff_ratio"] if m in present]
+        # The report's table order first, then the other metrics metric_info describes, then the rest by name.
+        order = [m for m in first if m in present]
         order += [k for k in rest if description_of(k)]
         described = [(m, description_of(m), unit_of(units, m)) for m in order]
         others = [k for k in rest if not description_of(k)]

@@ -1,5 +1,7 @@
 #include "experiments/runner/runner.h"
 
+#include "core/material/glint_table.h"
+
 #include "core/render/scene_gpu.h"
 #include "core/util/content_hash.h"
 #include "core/util/data_dir.h"
@@ -72,7 +74,7 @@ nlohmann::json run_input_hashes(const ExperimentSpec& spec, const metrics::Color
     out["hdri " + spec.sky.hdri] = file_content_hash(spec.sky.hdri);
   out["ocio_config"] = file_content_hash(cm.config_path());
   for (const auto& v : spec.variants)
-    if (v.material.glint_file) out["glint_model " + v.material.glint_file->file] = file_content_hash(v.material.glint_file->file);
+    if (v.material.glint_file && !v.material.glint_file->builtin) out["glint_model " + v.material.glint_file->file] = file_content_hash(v.material.glint_file->file);
   auto add = [&](const std::string& seq, const std::string& what) {
     if (seq.empty()) return;
     const std::vector<int> numbers = first_frame_numbers(seq, spec.frames, what);
@@ -313,7 +315,9 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   ImageWriter images(out_dir, plan, cm);
   if (work.last_frame >= 0) {
     core::SceneGpu scene(ctx, data.mesh, data.env_texture);
-    ReferenceCache cache(opt.cache_dir.empty() ? results_path("cache/reference") : opt.cache_dir);
+    const std::string cache_dir = opt.cache_dir.empty() ? results_path("cache/reference") : opt.cache_dir;
+    ReferenceCache cache(cache_dir);
+    core::set_glint_table_cache_dir(cache_dir);  // a glint model's data table, beside the truths
     FrameLoop loop(ctx, scene, plan, data, cm, cache, log);
     loop.run(work, {journal.get(), &images});
   }

@@ -39,6 +39,10 @@ import sys
 import threading
 import time
 
+# The report's folder, beside this one in the source tree and where installed: Pareto dominance.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "report"))
+import glintlab_pareto  # noqa: E402
+
 try:
     import optuna
 except ImportError as e:  # pragma: no cover - the package is a bootstrap dependency
@@ -363,12 +367,8 @@ def finished(study):
     return [t for t in study.get_trials(deepcopy=False) if t.state == optuna.trial.TrialState.COMPLETE]
 
 
-def dominates(a, b):
-    return all(x <= y for x, y in zip(a, b)) and any(x < y for x, y in zip(a, b))
-
-
 def pareto(trials):
-    return [t for t in trials if not any(dominates(u.values, t.values) for u in trials if u is not t)]
+    return glintlab_pareto.front(trials, lambda t: t.values)
 
 
 def write_outputs(study_dir):
@@ -496,7 +496,7 @@ def write_report(study_dir, d, study, done, front):
     dom_html = ""
     base_pt = next((vals for name, vals in shipped if name == d["base"]), None)
     if base_pt is not None:
-        better = [t for t in done if dominates(t.values, base_pt)]
+        better = [t for t in done if glintlab_pareto.dominates(t.values, base_pt)]
         dom_html = ("<h2>Against the base variant</h2><p>The base variant <b>" + html.escape(d["base"]) + "</b>: "
                     + ", ".join(f"{html.escape(label(m))} {v:.4g}" for m, v in zip(objs, base_pt)) + ". "
                     + (f"{len(better)} trial(s) dominate it on every objective: "

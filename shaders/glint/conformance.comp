@@ -14,6 +14,7 @@ layout(std430, set = 0, binding = 0) readonly buffer Inputs { float inputs[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float outputs[]; };
 layout(push_constant) uniform Push { uint count; };
 
+#define GLINT_TABLE_BINDING 2  // the model's data table, when it declares one (glint/query.glsl)
 #include "sand/glint_models.glsl"
 
 #define CONFORMANCE_IN 28u

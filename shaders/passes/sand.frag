@@ -29,6 +29,7 @@ SandParams sand_params = SandParams(
 layout(set = 0, binding = 1, std140) uniform MaterialUBO { SandParams sand_params; };
 #endif
 layout(set = 0, binding = 2) uniform sampler2D env_map;
+#define GLINT_TABLE_BINDING 3  // the glint model's data table, when it declares one (glint/query.glsl)
 #include "common/environment.glsl"
 #include "sand/sand.glsl"
 
@@ -66,6 +67,8 @@ void main() {
   // so a filtered glint model integrates its own stratum, not the whole pixel.
   float footprint = sqrt(sample_jitter_weight.z);
   SandSurface s = sand_surface(v_x_obj, v_x, n, wo, dist, v_t, v_uv, dFdx(v_uv) * footprint, dFdy(v_uv) * footprint);
+  s.dwo_dx = dFdx(wo) * footprint;
+  s.dwo_dy = dFdy(wo) * footprint;
   SandLight l = SandLight(frame_sun_dir.xyz, frame_sun_L.rgb, env_irradiance(n), frame_sun_dir.w);
   // Not clamped: every frame is scanned for NaN/Inf/negative values, and a
   // clamp here would hide a defect of the material.

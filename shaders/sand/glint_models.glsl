@@ -60,6 +60,8 @@ GlintQuery glint_query(SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy, GlintFra
   q.density = exp2(3.32192809489 * p.glint_log_density);  // 10^d, d <= 14
   q.sun_cone = r.cone;
   q.rough = r;
+  q.dh_dx = vec3(0.0);
+  q.dh_dy = vec3(0.0);
   GLINT_MODEL_PARAMETER_VALUES
   return q;
 }
@@ -71,11 +73,12 @@ struct GlintTerm {
 };
 
 // uv, duv_dx, duv_dy: surface coordinates and their screen derivatives;
-// t, b, n: the tangent frame (t along u, b along v); sun_cone: the sun's
+// t, b, n: the tangent frame (t along u, b along v); dwo_dx, dwo_dy: the
+// screen derivatives of wo (world; 0 where unknown); sun_cone: the sun's
 // angular radius (rad). limit: the smooth limit (the far field) instead of
 // the model.
 GlintTerm glint_term(bool limit, SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy, vec3 t, vec3 b, vec3 n, vec3 wi,
-                     vec3 wo, vec3 L_i, float sun_cone) {
+                     vec3 wo, vec3 dwo_dx, vec3 dwo_dy, vec3 L_i, float sun_cone) {
   GlintTerm g;
   g.L = vec3(0.0);
   g.cells = 0.0;
@@ -83,6 +86,15 @@ GlintTerm glint_term(bool limit, SandParams p, vec2 uv, vec2 duv_dx, vec2 duv_dy
   if (!f.valid) return g;
   GlintRoughness r = glint_roughness(p, sun_cone);
   GlintQuery q = glint_query(p, uv, duv_dx, duv_dy, f, r);
+  // h = normalize(wi + wo) with wi fixed (a directional light): dh = (I - h h^T) dwo / |wi + wo|,
+  // in the local frame.
+  float len = length(f.wi + f.wo);
+  if (len > 1e-6) {
+    vec3 dx = vec3(dot(t, dwo_dx), dot(b, dwo_dx), dot(n, dwo_dx));
+    vec3 dy = vec3(dot(t, dwo_dy), dot(b, dwo_dy), dot(n, dwo_dy));
+    q.dh_dx = (dx - f.h * dot(f.h, dx)) / len;
+    q.dh_dy = (dy - f.h * dot(f.h, dy)) / len;
+  }
   vec3 D;
   if (limit) {
     D = vec3(glint_limit_D(q));

@@ -66,10 +66,13 @@
 // as far as orthonormality to n allows, (t, b, n) right-handed): the frame of
 // the anisotropic glint roughness; uv surface coordinates; duv_dx, duv_dy
 // their screen-space derivatives (dFdx, dFdy): the pixel footprint of the
-// zirr glints (Zirr & Kaplanyan 2016 sec. 4.2).
+// zirr glints (Zirr & Kaplanyan 2016 sec. 4.2); dwo_dx, dwo_dy the screen
+// derivatives of wo (0 where unknown): how the half vector moves across the
+// pixel, which a model may filter over (GlintQuery.dh_dx).
 struct SandSurface {
   vec3 x_obj; vec3 x; vec3 n; vec3 wo; float dist;
   vec3 t; vec3 b; vec2 uv; vec2 duv_dx; vec2 duv_dy;
+  vec3 dwo_dx; vec3 dwo_dy;
 };
 // wi unit direction to the sun; L_i sun radiance L_i(x, w_i) (its normal
 // irradiance, see sand/energy.glsl); L_sky_omega the hemisphere term
@@ -87,7 +90,7 @@ SandSurface sand_surface(vec3 x_obj, vec3 x, vec3 n, vec3 wo, float dist, vec4 t
   frisvad_basis(n, f1, f2);
   vec3 t = safe_normalize(tangent.xyz - n * dot(n, tangent.xyz), f1);
   vec3 b = (tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
-  return SandSurface(x_obj, x, n, wo, dist, t, b, uv, duv_dx, duv_dy);
+  return SandSurface(x_obj, x, n, wo, dist, t, b, uv, duv_dx, duv_dy, vec3(0.0), vec3(0.0));
 }
 
 // Every intermediate term, named as in the thesis (zero where compiled out).
@@ -179,7 +182,8 @@ SandTerms sand_terms(SandParams p, SandSurface s, SandLight l) {
     float lobe = sun_lobe_scale(p.energy_consistent);
     r.L_g = L_g(r.g, l.L_i * lobe, l.L_sky_omega * lobe, p.I_glints.rgb, compat);
   } else if (glint_model != SAND_GLINT_NONE) {
-    GlintTerm g = glint_term(false, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, l.L_i, l.cone);
+    GlintTerm g = glint_term(false, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, s.dwo_dx, s.dwo_dy, l.L_i,
+                             l.cone);
     r.L_g = g.L;
     r.glint_cells = g.cells;
   }
@@ -196,7 +200,8 @@ SandTerms sand_terms(SandParams p, SandSurface s, SandLight l) {
   // model averages to its smooth limit there (the thesis' far field has no
   // glints, eq. 4.36).
   if (glint_model != SAND_GLINT_KAJS && glint_model != SAND_GLINT_NONE)
-    r.L_g_far = glint_term(true, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, l.L_i, l.cone).L;
+    r.L_g_far =
+        glint_term(true, p, s.uv, s.duv_dx, s.duv_dy, s.t, s.b, s.n, l.wi, s.wo, s.dwo_dx, s.dwo_dy, l.L_i, l.cone).L;
 #endif
   r.L_far = L_far(r.L_brdf, r.L_f + r.L_g_far, r.L_t, r.rho_n_intensity);
 #endif

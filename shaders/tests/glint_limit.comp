@@ -44,8 +44,8 @@ void main() {
   twin_model = GLINT_TWIN_ZIRR;
   p.glint_intensity = 1.0;
   const vec3 t = vec3(1.0, 0.0, 0.0), b = vec3(0.0, 1.0, 0.0), n = vec3(0.0, 0.0, 1.0), L_i = vec3(1.0);
-  GlintTerm z = glint_term(false, p, uv, dx, dy, t, b, n, wi, wo, L_i, 0.0);
-  vec3 beck = glint_term(true, p, uv, dx, dy, t, b, n, wi, wo, L_i, 0.0).L;
+  GlintTerm z = glint_term(false, p, uv, dx, dy, t, b, n, wi, wo, vec3(0.0), vec3(0.0), L_i, 0.0);
+  vec3 beck = glint_term(true, p, uv, dx, dy, t, b, n, wi, wo, vec3(0.0), vec3(0.0), L_i, 0.0).L;
   // grains: the light and view are fixed, so the microfacet factor is applied once to the
   // mean NDF of the sub-samples (glint_term does the same per sample)
   GlintFrame f = glint_frame(t, b, n, wi, wo);

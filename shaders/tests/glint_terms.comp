@@ -105,7 +105,7 @@ void main() {
   out3(o + 56u, z.D);
   outputs[o + 59u] = z.cells;
   out3(o + 60u, glint_grains_D(uv, f.h, r, twin_color_saturation));
-  GlintTerm g = glint_term(false, p, uv, dx, dy, t, b, n, wi, wo, L_i, sun_cone);
+  GlintTerm g = glint_term(false, p, uv, dx, dy, t, b, n, wi, wo, vec3(0.0), vec3(0.0), L_i, sun_cone);
   out3(o + 63u, g.L);
   outputs[o + 66u] = g.cells;
   out3(o + 67u, glint_radiance(vec3(1.0), f, r, p.ior, vec3(1.0), 1.0));

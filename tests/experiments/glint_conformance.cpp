@@ -3,7 +3,9 @@
 // experiment: validated before any work, compile errors named by line, its
 // content part of the run's inputs (a changed file refuses --resume).
 #include "experiments/glint_test/glint_test.h"
+#include "core/material/glint_table.h"
 #include "core/util/json_check.h"
+#include "core/util/strings.h"
 #include "core/vk/shader_compiler.h"
 #include "core/material/program.h"
 #include "experiments/runner/runner.h"
@@ -20,6 +22,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -53,7 +56,8 @@ TEST(GlintTest, EveryBuiltInModelPassesEveryCheckItDeclares) {
     for (const auto& c : r.checks) {
       EXPECT_TRUE(std::isfinite(c.figure)) << m.name << " " << c.name;
       if (c.applies && !c.figure_only) {
-        EXPECT_TRUE(c.pass) << m.name << " " << c.name;
+        // a check in fails= is the published method's own defect: it must still fail
+        EXPECT_NE(c.pass, c.expected_failure) << m.name << " " << c.name;
         ++applying;
       }
     }
@@ -76,6 +80,42 @@ TEST(GlintTest, TwiceBeckmannFailsUnbiasedAndNanAtGrazingFailsFinite) {
   EXPECT_FALSE(check(nan, "finite").pass) << nan.text();
   EXPECT_GT(check(nan, "finite").figure, 0.0);
   EXPECT_NE(check(nan, "finite").detail.find("NaN"), std::string::npos);
+}
+
+TEST(GlintTest, DeclaredFailuresAreRunAndExpectedToFail) {
+  GlintTestReport biased = conformance((kModels / "biased_declared.glsl").string());
+  EXPECT_TRUE(biased.all_pass()) << biased.text();
+  EXPECT_TRUE(check(biased, "unbiased").applies);
+  EXPECT_TRUE(check(biased, "unbiased").expected_failure);
+  EXPECT_FALSE(check(biased, "unbiased").pass) << biased.text();
+  EXPECT_GT(check(biased, "limit").figure, 40.0) << "1.5 x the limit is 50 % off";
+  EXPECT_NE(biased.text().find("fails "), std::string::npos) << biased.text();
+  // declaring a check it passes as failing fails the suite, naming the fix
+  test::TempDir dir("declared_failure");
+  std::string text = read_text_file(kModels / "biased_declared.glsl").value();
+  const size_t at = text.find("checks=finite,deterministic fails=unbiased,limit");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 48, "checks=deterministic fails=unbiased,limit,finite");
+  std::ofstream(dir / "wrong.glsl") << text;
+  GlintTestReport wrong = conformance((dir / "wrong.glsl").string());
+  EXPECT_FALSE(wrong.all_pass()) << wrong.text();
+  EXPECT_TRUE(check(wrong, "finite").pass);
+  EXPECT_NE(wrong.text().find("take it out of fails="), std::string::npos) << wrong.text();
+}
+
+TEST(GlintTest, AModelReadsTheDataTableItsFileGenerates) {
+  const core::GlintModelDecl d = resolve_glint_model((kModels / "beckmann_table.glsl").string());
+  ASSERT_EQ(d.table_size, 4096u);
+  auto& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  auto table = core::glint_table(ctx, d);
+  ASSERT_EQ(table->size(), 4096u);
+  for (size_t i = 0; i < table->size(); ++i) ASSERT_EQ((*table)[i], float(i)) << i;
+  EXPECT_EQ(core::glint_table(ctx, d).get(), table.get()) << "generated once per content";
+  // glint_D reads entry i / i = 1: every figure is the built-in beckmann's, bit for bit
+  GlintTestReport t = conformance(d.file), b = conformance("beckmann");
+  EXPECT_TRUE(t.all_pass()) << t.text();
+  for (const auto& c : b.checks) EXPECT_EQ(check(t, c.name).figure, c.figure) << c.name;
 }
 
 TEST(GlintTest, TheChecksCompareWithTheDeclaredSmoothLimit) {
@@ -223,6 +263,60 @@ TEST(UserGlintModel, ResumeAfterTheFileChangedIsRefused) {
   std::ostringstream changed;
   EXPECT_EQ(run_experiment(o, changed), 2) << changed.str();
   EXPECT_NE(changed.str().find("--resume"), std::string::npos) << changed.str();
+}
+
+TEST(UserGlintModel, AModelWithADataTableRendersAsTheModelItComputes) {
+  // the table holds i, glint_D reads entry i / i = 1: the frames equal the built-in beckmann's
+  test::TempDir dir("user_glint_table");
+  fs::copy_file(kModels / "beckmann_table.glsl", dir.path() / "t.glsl");
+  nlohmann::json j = user_experiment({{"file", "t.glsl"}, {"truth", "self"}});
+  j["variants"].push_back({{"name", "beckmann"}, {"material", {{"glint_model", "beckmann"}}}});
+  write(dir.path() / "e.json", j.dump());
+  RunOptions o = options(dir.path() / "e.json", dir.path() / "out");
+  o.max_frames = 1;
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(o, log), 0) << log.str();
+  std::map<std::string, double> de;
+  std::istringstream records(read(dir.path() / "out" / "records.jsonl"));
+  for (std::string line; std::getline(records, line);) {
+    const nlohmann::json r = nlohmann::json::parse(line);
+    if (r.value("type", "") != "frame") continue;
+    for (const auto& kv : r["metrics"])  // [name, value] pairs
+      if (kv[0] == "deltaE2000") de[r["name"]] = kv[1].get<double>();
+  }
+  ASSERT_EQ(de.size(), 2u) << read(dir.path() / "out" / "records.jsonl");
+  EXPECT_GT(de["beckmann"], 0.0);
+  EXPECT_EQ(de["user"], de["beckmann"]);
+  EXPECT_TRUE(fs::exists(dir.path() / "cache" / "glint-tables")) << "kept in the run's cache folder";
+}
+
+TEST(GlintModelRender, EveryBuiltInModelRendersFiniteAndNonNegativeAtTwoRoughnesses) {
+  // one frame of every built-in model at a smooth and a rough global roughness, validation on: the
+  // run scans every frame (truths included) and exits 1 on a NaN, Inf or negative pixel
+  test::TempDir dir("every_model_render");
+  nlohmann::json j = user_experiment({});
+  j["variants"] = nlohmann::json::array();
+  for (const auto& m : core::builtin_glint_models())
+    for (double alpha : {0.05, 0.5})
+      j["variants"].push_back({{"name", m.name + "-" + std::to_string(int(alpha * 100))},
+                               {"material", {{"glint_model", m.name}, {"glints", {{"alpha_g", {alpha, alpha}}}}}}});
+  j["material"]["glints"] = {{"log_density", 6}};
+  write(dir.path() / "e.json", j.dump());
+  RunOptions o = options(dir.path() / "e.json", dir.path() / "out");
+  o.max_frames = 1;
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(o, log), 0) << log.str();
+  size_t frames = 0;
+  std::istringstream records(read(dir.path() / "out" / "records.jsonl"));
+  for (std::string line; std::getline(records, line);) {
+    const nlohmann::json r = nlohmann::json::parse(line);
+    if (r.value("type", "") != "frame") continue;
+    ++frames;
+    const auto& scan = r["scan"];  // pixels, nan, +inf, -inf, infinite, negative
+    EXPECT_GT(scan[0].get<double>(), 0.0) << r["name"];
+    for (int k = 1; k < 6; ++k) EXPECT_EQ(scan[k].get<double>(), 0.0) << r["name"] << " scan " << k;
+  }
+  EXPECT_EQ(frames, 2 * core::builtin_glint_models().size());
 }
 
 TEST(UserGlintModel, NegativeValuesAreDefectsOfTheRun) {

@@ -42,25 +42,29 @@ bad=$(grep -E -- '-dev$|^(gcc|g\+\+|clang|cpp|cmake|build-essential|libstdc\+\+-
 [ -z "$bad" ] || fail "Depends names build-time packages: $bad"
 # Every library the program names (ELF NEEDED) belongs to a package it depends on, where dpkg knows it.
 if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf >/dev/null; then
-  needed=$(readelf -d "$build/glintlab" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')
-  [ -n "$needed" ] || fail "readelf -d lists no NEEDED library of $build/glintlab"
-  libs=$(ldd "$build/glintlab")
-  declare -A so_of real_of
-  for lib in $needed; do
-    # The dynamic loader itself (libc6; needed for __tls_get_addr by the position-independent code),
-    # which ldd lists by its path, without "=>".
-    case $lib in ld-linux*.so.*) continue ;; esac
-    so_of[$lib]=$(awk -v l="$lib" '$1 == l && $2 == "=>" {print $3}' <<<"$libs")
-    [ -n "${so_of[$lib]}" ] || fail "ldd does not resolve $lib, which $build/glintlab needs"
-    real_of[$lib]=$(readlink -f "${so_of[$lib]}")
-  done
-  # One query for all ("package[:arch]: path" a line); the link's path or the file's is registered.
-  owners=$(dpkg -S "${so_of[@]}" "${real_of[@]}" 2>/dev/null || true)
-  for lib in $needed; do
-    [ -n "${so_of[$lib]:-}" ] || continue
-    pkg=$(grep -F -e ": ${so_of[$lib]}" -e ": ${real_of[$lib]}" <<<"$owners" | head -n1 | sed 's/[:,].*//' || true)
-    [ -n "$pkg" ] || continue
-    grep -qx "$pkg" <<<"$depends" || fail "the program needs $lib, of the package $pkg, which Depends does not name"
+  # The program and glintlab's own libraries it loads on first use (core/util/plugin.h).
+  for elf in "$build/glintlab" "$build/libglintlab_oiio.so" "$build/libglintlab_flow.so"; do
+    needed=$(readelf -d "$elf" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')
+    [ -n "$needed" ] || fail "readelf -d lists no NEEDED library of $elf"
+    libs=$(ldd "$elf")
+    declare -A so_of real_of
+    for lib in $needed; do
+      # The dynamic loader itself (libc6; needed for __tls_get_addr by the position-independent code),
+      # which ldd lists by its path, without "=>".
+      case $lib in ld-linux*.so.*) continue ;; esac
+      so_of[$lib]=$(awk -v l="$lib" '$1 == l && $2 == "=>" {print $3}' <<<"$libs")
+      [ -n "${so_of[$lib]}" ] || fail "ldd does not resolve $lib, which $elf needs"
+      real_of[$lib]=$(readlink -f "${so_of[$lib]}")
+    done
+    # One query for all ("package[:arch]: path" a line); the link's path or the file's is registered.
+    owners=$(dpkg -S "${so_of[@]}" "${real_of[@]}" 2>/dev/null || true)
+    for lib in $needed; do
+      [ -n "${so_of[$lib]:-}" ] || continue
+      pkg=$(grep -F -e ": ${so_of[$lib]}" -e ": ${real_of[$lib]}" <<<"$owners" | head -n1 | sed 's/[:,].*//' || true)
+      [ -n "$pkg" ] || continue
+      grep -qx "$pkg" <<<"$depends" || fail "$elf needs $lib, of the package $pkg, which Depends does not name"
+    done
+    unset so_of real_of
   done
 fi
 for p in libvulkan1 mesa-vulkan-drivers python3 python3-matplotlib python3-numpy python3-pil python3-optuna; do
@@ -73,7 +77,7 @@ for f in ./usr/bin/glintlab ./usr/share/glintlab/shaders/passes/surface.vert ./u
   ./usr/share/glintlab/experiments/thesis/fig6-7-hdri-match.json \
   ./usr/share/glintlab/experiments/report/glintlab_report.py ./usr/share/glintlab/experiments/tune/glintlab_tune.py \
   ./usr/share/glintlab/metrics/color/ocio/config.ocio ./usr/lib/python3/dist-packages/glintlab/__init__.py \
-  ./usr/lib/glintlab/libglintlab_oiio.so; do
+  ./usr/lib/glintlab/libglintlab_oiio.so ./usr/lib/glintlab/libglintlab_flow.so; do
   grep -qx "$f" <<<"$files" || fail "the package lacks $f"
 done
 grep -Eqx '\./usr/lib/python3/dist-packages/glintlab/_core\.cpython-[0-9]+-[a-z0-9_]+-linux-gnu\.so' <<<"$files" ||

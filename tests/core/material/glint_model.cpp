@@ -101,6 +101,23 @@ TEST(GlintModel, DeclarationsAreParsedAndMalformedOnesNamed) {
   expect_error(head + "// glint_parameter b default=yes type=bool\n", "m.glsl:2: default of bool b");
   expect_error(head + "// glint_parameter k default=1 range=0,1\n// glint_parameter k default=1 range=0,1\n",
                "m.glsl:3: parameter k declared twice");
+  // checks the published method fails, and a data table
+  auto f = core::parse_glint_model("f", "f.glsl",
+                                   "// glint_model checks=finite,deterministic fails=unbiased,limit\n"
+                                   "// glint_table size=4096\n");
+  EXPECT_EQ(f.fails, (std::vector<std::string>{"unbiased", "limit"}));
+  EXPECT_EQ(f.table_size, 4096u);
+  f.file = "f.glsl";
+  defs = core::glint_model_defines(f);
+  EXPECT_NE(std::find(defs.begin(), defs.end(), "GLINT_TABLE_SIZE=4096u"), defs.end());
+  EXPECT_EQ(d.table_size, 0u);
+  expect_error("// glint_model checks=finite fails=finite\n", "m.glsl: check \"finite\" is both in checks= and in fails=");
+  expect_error("// glint_model fails=slow\n", "m.glsl:1: unknown check \"slow\"");
+  expect_error(head + "// glint_table size=0\n", "m.glsl:2: the table size must be a whole number");
+  expect_error(head + "// glint_table size=2097153\n", "m.glsl:2: the table size must be a whole number");
+  expect_error(head + "// glint_table size=10.5\n", "m.glsl:2: the table size");
+  expect_error(head + "// glint_table rows=10\n", "m.glsl:2: the table size");
+  expect_error(head + "// glint_table size=10\n// glint_table size=10\n", "m.glsl:3: a second glint_table line");
 }
 
 // Adding a built-in model is adding its file: no source of the product lists

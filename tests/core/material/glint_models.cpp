@@ -164,6 +164,20 @@ TEST(GlintParams, DefaultsJsonAndRangeErrors) {
   expect_error({{"glint_model", "zirr2"}}, {"glint_model", "zirr", "grains", "beckmann"});
   expect_error({{"energy_consistent", 1}}, {"energy_consistent"});
   expect_error({{"glint_model", "zirr"}, {"glints", {{"half_vector_blend", "yes"}}}}, {"material.glints.half_vector_blend"});
+  // a built-in model measured against another truth: the smooth limit against explicit grains
+  nlohmann::json other = {{"glint_model", {{"name", "beckmann"}, {"truth", "grains"}}}};
+  JsonReader ro(other, "exp.json", "material");
+  const core::SandParams beck = core::SandParams::from_json(ro);
+  EXPECT_EQ(beck.glint_model, "beckmann");
+  EXPECT_EQ(beck.pack().glint_model, core::glint_model_gpu_id("beckmann"));
+  EXPECT_EQ(beck.reference().glint_model, "grains");
+  EXPECT_EQ(core::SandParams().reference().glint_model, core::SandParams().glint_model);
+  nlohmann::json declared = {{"glint_model", "beckmann"}};
+  JsonReader rd(declared, "exp.json", "material");
+  EXPECT_EQ(core::SandParams::from_json(rd).reference().glint_model, "beckmann") << "its declared truth: itself";
+  expect_error({{"glint_model", {{"name", "beckmann"}, {"truth", "zirr"}}}}, {"material.glint_model.truth", "grains"});
+  expect_error({{"glint_model", {{"name", "phong"}}}}, {"material.glint_model.name", "beckmann"});
+  expect_error({{"glint_model", {{"name", "beckmann"}, {"file", "x.glsl"}}}}, {"material.glint_model", "file"});
   core::SandParams bad;
   bad.glints.alpha_g[1] = 2.0;
   EXPECT_THROW(bad.validate(), ConfigError);

@@ -1,0 +1,18 @@
+// glintlab's own shared libraries that hold what only some commands need (libglintlab_oiio.so:
+// OpenImageIO, core/util/oiio_plugin.h; libglintlab_flow.so: OpenCV's optical flow,
+// core/util/flow_plugin.h), loaded with dlopen on first use so that the others never load the
+// libraries they link. The RUNPATH of the object that calls dlopen finds them (the program or the
+// Python module: beside build/glintlab in the build tree, PREFIX/lib/glintlab when installed).
+#pragma once
+
+#include <string>
+
+namespace glintlab {
+
+// dlopen(library), then the table its extern "C" function `symbol` returns, whose first member is an
+// int version that must equal `version`. IoError naming the library, `what` it is for and dlerror()'s
+// reason when it cannot be loaded, or when it is not this glintlab's (no such function, another
+// version).
+const void* load_plugin(const char* library, const char* symbol, int version, const std::string& what);
+
+}  // namespace glintlab
