@@ -13,8 +13,11 @@
 // stochastically between the two LODs per cell, and adds the expected value
 // of every cell it does not evaluate in closed form (the compensation term),
 // so the cost per query is constant. No precomputation.
-// Its smooth limit is GGX with alpha_g; its truth is the explicit Beckmann
-// microdetails of `grains` (shaders/README.md discusses the difference).
+// Its smooth limit is GGX with alpha_g; its truth is the explicit
+// microdetails of `grains`, whose mean is Beckmann with alpha_g: the same
+// peak, but GGX's longer tails put more glints far from the specular
+// direction than the truth has, so errors against the truth include that
+// difference of distributions besides the glints' positions.
 // glint_model truth=grains limit=ggx checks=finite,unbiased,limit,deterministic
 // glint_parameter filter_width default=0.7 range=0.1,4
 // filter_width: the standard deviation of the Gaussian pixel filter in pixels
