@@ -281,222 +281,384 @@ struct MotionMeans final : RecordSink {
 
 nlohmann::json num_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
-}  // namespace
 
-int measure_sequences(const MeasureOptions& o, std::ostream& log) {
-  share_one_heap_between_threads();  // frames are decoded on one thread and freed on another
-  const metrics::ColorManager cm = load_color_manager(o.ocio_config);
+// What a measurement is, from its options and the files' headers, before any pixel is read.
+struct Setup {
   Plan p;
   ExperimentSpec spec;
-  nlohmann::json source;
+  nlohmann::json source;  // the run's description in the journal header
   std::string disocclusion, motion_kind, motion_source;
-  try {
-    // ---- options, before any file is opened
-    if (o.tests.empty()) throw ConfigError("measure: give at least one --test [NAME=]SEQ");
-    if (o.tests.size() > 64) throw ConfigError("measure: at most 64 --test sequences");
-    if (!(o.fps >= kMinFps && o.fps <= kMaxFps)) {
-      std::ostringstream msg;
-      msg << "--fps: " << o.fps << " is not allowed; allowed: frames per second in [" << kMinFps << ", " << kMaxFps
-          << "]";
-      throw ConfigError(msg.str());
-    }
-    if (o.first > o.last)
-      throw ConfigError("--frames: FIRST " + std::to_string(o.first) + " is after LAST " + std::to_string(o.last));
-    if (!o.motion.empty() && !o.motion_from.empty())
-      throw ConfigError("measure: give --motion SEQ or --motion-from, not both");
-    if (!o.motion_from.empty() && o.motion_from != "reference" && o.motion_from != "test")
-      throw ConfigError("--motion-from: '" + o.motion_from + "' is not allowed (reference or test)");
-    if (!o.reference_b.empty() && o.reference.empty())
-      throw ConfigError("--reference-b: the reference's second half needs its first: give --reference SEQ too");
-    if (o.motion_from == "reference" && o.reference.empty())
-      throw ConfigError("--motion-from reference: there is no --reference");
-    if (!o.depth.empty() && o.motion.empty() && o.motion_from.empty())
-      throw ConfigError("--depth: depth is for disocclusion along given vectors; give --motion or --motion-from too "
-                        "(estimated flow uses forward-backward consistency)");
-    {
-      auto c = enum_from_name(kMotionConventionNames, o.motion_convention);
-      if (!c) {
-        throw ConfigError("--motion-convention: '" + o.motion_convention + "' is not known (allowed: " +
-                          enum_name_list(kMotionConventionNames) + ")");
-      }
-      p.convention = *c;
-    }
-    std::vector<std::string> metric_list = o.metrics.empty() ? std::vector<std::string>{"deltaE2000", "flip"} : o.metrics;
-    metrics::MetricOptions selected;
-    std::vector<std::string> per_pixel;
-    try {
-      per_pixel = metrics::select_metrics(metric_list, selected);
-    } catch (const std::invalid_argument& e) {
-      throw ConfigError(std::string("--metrics: ") + e.what());
-    }
-    if (!o.space.empty()) (void)cm.canonical_name(o.space);
-    check_name(o.name, "--name");
+};
 
-    // ---- the frames: numbers from the reference (or the first test), then every sequence resolved
-    const bool range = o.first != INT_MIN || o.last != INT_MAX;
-    const std::string base = o.reference.empty() ? o.tests[0].seq : o.reference;
-    p.numbers = select_numbers(o.reference.empty() ? "--test" : "--reference", base, o.first, o.last);
-    if (p.numbers.size() > size_t(kMaxSequenceFrames))
-      throw ConfigError("measure: more than " + std::to_string(kMaxSequenceFrames) + " frames");
-    auto colour_source = [&](const std::string& what, const std::string& text, const std::string& space) {
-      FrameFiles f = open_colour_sequence(text, p.numbers, space.empty() ? o.space : space, cm, "measure: " + what, &p.width, &p.height, log);
-      if (!range) {  // without --frames, every sequence has exactly the frames of the base one
-        const auto all = list_frames(parse_sequence(text, what), what);
-        if (all.size() != p.numbers.size())
-          throw ConfigError(what + ": '" + text + "' has " +
-                            frame_count_text(all.size(), all.front().number, all.back().number) + ", but " +
-                            (o.reference.empty() ? "the first test" : "the reference") + " has " +
-                            frame_count_text(p.numbers.size(), p.numbers.front(), p.numbers.back()) +
-                            "; give --frames FIRST:LAST to measure a common range");
-      }
-      return f;
-    };
-    if (!o.reference.empty()) p.reference = colour_source("--reference", o.reference, o.reference_space);
-    if (!o.reference_b.empty()) p.reference_b = colour_source("--reference-b", o.reference_b, o.reference_space);
-    std::set<std::string> names;
-    for (const auto& t : o.tests) {
-      const std::string name = t.name.empty() ? default_name(parse_sequence(t.seq, "--test")) : t.name;
-      check_name(name, "--test");
-      if (!names.insert(name).second)
-        throw ConfigError("--test: two tests are named '" + name + "'; name them: --test NAME=SEQ");
-      p.tests.push_back(colour_source("--test " + name, t.seq, t.space));
-      p.test_names.push_back(name);
-    }
-    const std::string colour_of_motion = o.motion_from == "reference" ? o.reference
-                                         : o.motion_from == "test"    ? o.tests[0].seq
-                                                                      : std::string();
-    if (!o.motion.empty() || !colour_of_motion.empty()) {
-      const std::string what = !colour_of_motion.empty() ? "--motion-from " + o.motion_from : "--motion";
-      Source m = resolve(what, colour_of_motion.empty() ? o.motion : colour_of_motion, p.numbers);
-      const FrameHeader h = read_frame_header(m.paths[0]);
-      std::string layer = m.seq.layer;
-      if (!colour_of_motion.empty()) {
-        // Only a layer named for vectors: a colour layer's R and G are never read as motion.
-        layer = vector_layer(p.convention, h, m.seq.layer);
-        if (layer.empty()) {
-          std::string names;
-          for (const auto& n : motion_layer_names(p.convention)) names += (names.empty() ? "" : ", ") + n;
-          throw ConfigError(m.what + ": '" + m.paths[0] + "' has no layer of " +
-                            std::string(enum_name(kMotionConventionNames, p.convention)) + " vectors (a layer named " +
-                            names + "; colour channels are never read as vectors); the file has: " +
-                            channel_list(h) + ". Give the vectors' files with --motion SEQ, or no vectors "
-                            "(optical flow)");
-        }
-      }
-      p.motion_channels = motion_channels(p.convention, h, layer, m.paths[0]);
-      m.channels = p.motion_channels.backward;
-      m.channels.insert(m.channels.end(), p.motion_channels.forward.begin(), p.motion_channels.forward.end());
-      m.channels.insert(m.channels.end(), p.motion_channels.distances.begin(), p.motion_channels.distances.end());
-      p.motion = std::move(m);
-      motion_kind = "exact";
-      motion_source = p.motion->what + " " + (o.motion.empty() ? p.motion->seq.text : o.motion) +
-                      (layer.empty() ? std::string() : " (layer " + layer + ")");
-    } else {
-      motion_kind = "estimated";
-      motion_source = std::string("optical flow (OpenCV DIS) of ") + (p.reference ? "the reference" : "the first test");
-    }
-    if (!o.depth.empty()) {
-      Source d = resolve("--depth", o.depth, p.numbers);
-      const FrameHeader h = read_frame_header(d.paths[0]);
-      auto z = find_channels(h, d.seq.layer, {{"Z", "z", "Y", "R", "depth", "Depth", "Depth.Z"}});
-      if (z[0].empty())
-        throw ConfigError("--depth: '" + d.paths[0] + "' has no depth channel (Z, Y or R" +
-                          (d.seq.layer.empty() ? std::string() : " of layer " + d.seq.layer) +
-                          "); the file has: " + channel_list(h));
-      d.channels = z;
-      p.depth = std::move(d);
-    }
-    const bool distances = p.motion && !p.motion_channels.distances.empty();
-    const bool fb = (p.motion && !p.motion_channels.forward.empty()) || motion_kind == "estimated";
-    disocclusion = distances                    ? "glintlab's distance channels"
-                   : p.depth && fb               ? "depth, and forward-backward consistency"
-                   : p.depth                     ? "depth"
-                   : fb                          ? "forward-backward consistency"
-                                                 : "off-screen only (no depth, no vectors to the next frame)";
-
-    if (motion_kind == "estimated" && std::min(p.width, p.height) < 16)
-      throw ConfigError("measure: no motion vectors given, and optical flow (OpenCV DIS) needs frames of at least "
-                        "16 pixels on the short side (these are " + std::to_string(p.width) + "x" +
-                        std::to_string(p.height) + "); give the renderer's vectors with --motion or --motion-from");
-    if (motion_kind == "estimated" && std::max(p.width, p.height) < 46)
-      throw ConfigError("measure: no motion vectors given, and optical flow (OpenCV DIS) needs frames of at least "
-                        "46 pixels on the long side (these are " + std::to_string(p.width) + "x" +
-                        std::to_string(p.height) + "); give the renderer's vectors with --motion or --motion-from");
-    // ---- every header, before any pixel (the colour sequences' are checked as they are opened)
-    if (p.motion) check_headers(*p.motion, &p.width, &p.height);
-    if (p.depth) check_headers(*p.depth, &p.width, &p.height);
-
-    // ---- what the run is: options and the content of every file (the journal header)
-    nlohmann::json tests = nlohmann::json::array();
-    for (size_t i = 0; i < o.tests.size(); ++i)
-      tests.push_back({{"name", p.test_names[i]}, {"frames", o.tests[i].seq}, {"space", p.tests[i].space}});
-    source = {{"reference", o.reference},
-              {"reference_space", p.reference ? p.reference->space : ""},
-              {"reference_b", o.reference_b},
-              {"tests", tests},
-              {"motion", o.motion},
-              {"motion_from", o.motion_from},
-              {"motion_convention", o.motion_convention},
-              {"depth", o.depth},
-              {"metrics", metric_list},
-              {"frames", {p.numbers.front(), p.numbers.back()}},
-              {"fps", o.fps},
-              {"name", o.name}};
-
-    spec.name = o.name;
-    spec.file = o.file;
-    spec.width = p.width;
-    spec.height = p.height;
-    spec.frames = int(p.numbers.size());
-    spec.working_space = metrics::kXyzD65Space;  // inputs are converted from their own spaces once
-    spec.metrics = per_pixel;
-    spec.metric_options.glints = selected.glints;
-    spec.metric_options.pooled = selected.pooled;
-    spec.reference.enabled = bool(p.reference);
-    spec.reference.grid = 0;
-    spec.reference.frames = o.reference;
-    spec.reference.frames_b = o.reference_b;
-    spec.output.exr = false;
-    spec.output.png = o.report;  // previews are for the report: a CI job with --no-report writes none
-    spec.output.every = std::max(1, int((p.numbers.size() + 7) / 8));  // at most 8 previews a sequence
-    spec.output.contact_sheet = false;
-    if (!o.display.empty()) spec.output.display = o.display;
-    if (!o.view.empty()) spec.output.view = o.view;
-    spec.output.exposure = o.exposure;
-    for (size_t i = 0; i < p.tests.size(); ++i) {
-      VariantSpec v;
-      v.name = p.test_names[i];
-      v.frames = o.tests[i].seq;
-      spec.variants.push_back(v);
-    }
-    spec.source = source;
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::invalid_argument& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
+// The options alone, before any file is opened; their motion convention. ConfigError naming the option.
+MotionConvention checked_options(const MeasureOptions& o) {
+  if (o.tests.empty()) throw ConfigError("measure: give at least one --test [NAME=]SEQ");
+  if (o.tests.size() > 64) throw ConfigError("measure: at most 64 --test sequences");
+  if (!(o.fps >= kMinFps && o.fps <= kMaxFps)) {
+    std::ostringstream msg;
+    msg << "--fps: " << o.fps << " is not allowed; allowed: frames per second in [" << kMinFps << ", " << kMaxFps
+        << "]";
+    throw ConfigError(msg.str());
   }
+  if (o.first > o.last)
+    throw ConfigError("--frames: FIRST " + std::to_string(o.first) + " is after LAST " + std::to_string(o.last));
+  if (!o.motion.empty() && !o.motion_from.empty())
+    throw ConfigError("measure: give --motion SEQ or --motion-from, not both");
+  if (!o.motion_from.empty() && o.motion_from != "reference" && o.motion_from != "test")
+    throw ConfigError("--motion-from: '" + o.motion_from + "' is not allowed (reference or test)");
+  if (!o.reference_b.empty() && o.reference.empty())
+    throw ConfigError("--reference-b: the reference's second half needs its first: give --reference SEQ too");
+  if (o.motion_from == "reference" && o.reference.empty())
+    throw ConfigError("--motion-from reference: there is no --reference");
+  if (!o.depth.empty() && o.motion.empty() && o.motion_from.empty())
+    throw ConfigError("--depth: depth is for disocclusion along given vectors; give --motion or --motion-from too "
+                      "(estimated flow uses forward-backward consistency)");
+  auto c = enum_from_name(kMotionConventionNames, o.motion_convention);
+  if (!c)
+    throw ConfigError("--motion-convention: '" + o.motion_convention + "' is not known (allowed: " +
+                      enum_name_list(kMotionConventionNames) + ")");
+  return *c;
+}
 
-  // ---- the first frame read while the files are hashed: a new run (no --resume) starts at frame 0
-  const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
-  auto read = [&p, &cm, &measure](int k, std::shared_ptr<const Image> prev_forward) {
-    return std::async(std::launch::async, [&p, &cm, &measure, k, prev_forward] {
-      return read_inputs(p, size_t(k), cm, measure, prev_forward);
-    });
+// The frame numbers (from the reference, or the first test), then every colour sequence opened: the
+// reference, its second half and the tests, each with the frames of the base one.
+void open_colour_sequences(const MeasureOptions& o, const metrics::ColorManager& cm, std::ostream& log, Plan& p) {
+  // ---- the frames: numbers from the reference (or the first test), then every sequence resolved
+  const bool range = o.first != INT_MIN || o.last != INT_MAX;
+  const std::string base = o.reference.empty() ? o.tests[0].seq : o.reference;
+  p.numbers = select_numbers(o.reference.empty() ? "--test" : "--reference", base, o.first, o.last);
+  if (p.numbers.size() > size_t(kMaxSequenceFrames))
+    throw ConfigError("measure: more than " + std::to_string(kMaxSequenceFrames) + " frames");
+  auto colour_source = [&](const std::string& what, const std::string& text, const std::string& space) {
+    FrameFiles f = open_colour_sequence(text, p.numbers, space.empty() ? o.space : space, cm, "measure: " + what, &p.width, &p.height, log);
+    if (!range) {  // without --frames, every sequence has exactly the frames of the base one
+      const auto all = list_frames(parse_sequence(text, what), what);
+      if (all.size() != p.numbers.size())
+        throw ConfigError(what + ": '" + text + "' has " +
+                          frame_count_text(all.size(), all.front().number, all.back().number) + ", but " +
+                          (o.reference.empty() ? "the first test" : "the reference") + " has " +
+                          frame_count_text(p.numbers.size(), p.numbers.front(), p.numbers.back()) +
+                          "; give --frames FIRST:LAST to measure a common range");
+    }
+    return f;
   };
-  // The loop's working set in 2 MiB pages: at most about 280 bytes a pixel and 70 more for each test
-  // (peak resident memory at 1920x1080: 570 MB with one test, whose reference's L*a*b* is not kept,
-  // 796 MB with two), at most what one call takes.
-  reserve_heap_in_huge_pages(
-      std::min(size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size()), kMaxHugeReservation));
-  std::future<FrameInput> next;
-  if (!o.resume) next = read(0, nullptr);
+  if (!o.reference.empty()) p.reference = colour_source("--reference", o.reference, o.reference_space);
+  if (!o.reference_b.empty()) p.reference_b = colour_source("--reference-b", o.reference_b, o.reference_space);
+  std::set<std::string> names;
+  for (const auto& t : o.tests) {
+    const std::string name = t.name.empty() ? default_name(parse_sequence(t.seq, "--test")) : t.name;
+    check_name(name, "--test");
+    if (!names.insert(name).second)
+      throw ConfigError("--test: two tests are named '" + name + "'; name them: --test NAME=SEQ");
+    p.tests.push_back(colour_source("--test " + name, t.seq, t.space));
+    p.test_names.push_back(name);
+  }
+}
 
-  // ---- hashes (the journal's identity of this run), then the journal
+// The motion: the vector files (--motion, or --motion-from the colour files' vector layer) or optical
+// flow; depth; and what disocclusion is decided by.
+void resolve_motion(const MeasureOptions& o, Setup& s) {
+  Plan& p = s.p;
+  std::string &motion_kind = s.motion_kind, &motion_source = s.motion_source, &disocclusion = s.disocclusion;
+  const std::string colour_of_motion = o.motion_from == "reference" ? o.reference
+                                       : o.motion_from == "test"    ? o.tests[0].seq
+                                                                    : std::string();
+  if (!o.motion.empty() || !colour_of_motion.empty()) {
+    const std::string what = !colour_of_motion.empty() ? "--motion-from " + o.motion_from : "--motion";
+    Source m = resolve(what, colour_of_motion.empty() ? o.motion : colour_of_motion, p.numbers);
+    const FrameHeader h = read_frame_header(m.paths[0]);
+    std::string layer = m.seq.layer;
+    if (!colour_of_motion.empty()) {
+      // Only a layer named for vectors: a colour layer's R and G are never read as motion.
+      layer = vector_layer(p.convention, h, m.seq.layer);
+      if (layer.empty()) {
+        std::string names;
+        for (const auto& n : motion_layer_names(p.convention)) names += (names.empty() ? "" : ", ") + n;
+        throw ConfigError(m.what + ": '" + m.paths[0] + "' has no layer of " +
+                          std::string(enum_name(kMotionConventionNames, p.convention)) + " vectors (a layer named " +
+                          names + "; colour channels are never read as vectors); the file has: " +
+                          channel_list(h) + ". Give the vectors' files with --motion SEQ, or no vectors "
+                          "(optical flow)");
+      }
+    }
+    p.motion_channels = motion_channels(p.convention, h, layer, m.paths[0]);
+    m.channels = p.motion_channels.backward;
+    m.channels.insert(m.channels.end(), p.motion_channels.forward.begin(), p.motion_channels.forward.end());
+    m.channels.insert(m.channels.end(), p.motion_channels.distances.begin(), p.motion_channels.distances.end());
+    p.motion = std::move(m);
+    motion_kind = "exact";
+    motion_source = p.motion->what + " " + (o.motion.empty() ? p.motion->seq.text : o.motion) +
+                    (layer.empty() ? std::string() : " (layer " + layer + ")");
+  } else {
+    motion_kind = "estimated";
+    motion_source = std::string("optical flow (OpenCV DIS) of ") + (p.reference ? "the reference" : "the first test");
+  }
+  if (!o.depth.empty()) {
+    Source d = resolve("--depth", o.depth, p.numbers);
+    const FrameHeader h = read_frame_header(d.paths[0]);
+    auto z = find_channels(h, d.seq.layer, {{"Z", "z", "Y", "R", "depth", "Depth", "Depth.Z"}});
+    if (z[0].empty())
+      throw ConfigError("--depth: '" + d.paths[0] + "' has no depth channel (Z, Y or R" +
+                        (d.seq.layer.empty() ? std::string() : " of layer " + d.seq.layer) +
+                        "); the file has: " + channel_list(h));
+    d.channels = z;
+    p.depth = std::move(d);
+  }
+  const bool distances = p.motion && !p.motion_channels.distances.empty();
+  const bool fb = (p.motion && !p.motion_channels.forward.empty()) || motion_kind == "estimated";
+  disocclusion = distances                    ? "glintlab's distance channels"
+                 : p.depth && fb               ? "depth, and forward-backward consistency"
+                 : p.depth                     ? "depth"
+                 : fb                          ? "forward-backward consistency"
+                                               : "off-screen only (no depth, no vectors to the next frame)";
+
+  if (motion_kind == "estimated" && std::min(p.width, p.height) < 16)
+    throw ConfigError("measure: no motion vectors given, and optical flow (OpenCV DIS) needs frames of at least "
+                      "16 pixels on the short side (these are " + std::to_string(p.width) + "x" +
+                      std::to_string(p.height) + "); give the renderer's vectors with --motion or --motion-from");
+  if (motion_kind == "estimated" && std::max(p.width, p.height) < 46)
+    throw ConfigError("measure: no motion vectors given, and optical flow (OpenCV DIS) needs frames of at least "
+                      "46 pixels on the long side (these are " + std::to_string(p.width) + "x" +
+                      std::to_string(p.height) + "); give the renderer's vectors with --motion or --motion-from");
+  // ---- every header, before any pixel (the colour sequences' are checked as they are opened)
+  if (p.motion) check_headers(*p.motion, &p.width, &p.height);
+  if (p.depth) check_headers(*p.depth, &p.width, &p.height);
+
+}
+
+// The run as an experiment of file sources (one variant a test), and its description for the journal.
+void describe_run(const MeasureOptions& o, const std::vector<std::string>& metric_list,
+                  const std::vector<std::string>& per_pixel, const metrics::MetricOptions& selected, Setup& s) {
+  Plan& p = s.p;
+  nlohmann::json& source = s.source;
+  ExperimentSpec& spec = s.spec;
+  // ---- what the run is: options and the content of every file (the journal header)
+  nlohmann::json tests = nlohmann::json::array();
+  for (size_t i = 0; i < o.tests.size(); ++i)
+    tests.push_back({{"name", p.test_names[i]}, {"frames", o.tests[i].seq}, {"space", p.tests[i].space}});
+  source = {{"reference", o.reference},
+            {"reference_space", p.reference ? p.reference->space : ""},
+            {"reference_b", o.reference_b},
+            {"tests", tests},
+            {"motion", o.motion},
+            {"motion_from", o.motion_from},
+            {"motion_convention", o.motion_convention},
+            {"depth", o.depth},
+            {"metrics", metric_list},
+            {"frames", {p.numbers.front(), p.numbers.back()}},
+            {"fps", o.fps},
+            {"name", o.name}};
+
+  spec.name = o.name;
+  spec.file = o.file;
+  spec.width = p.width;
+  spec.height = p.height;
+  spec.frames = int(p.numbers.size());
+  spec.working_space = metrics::kXyzD65Space;  // inputs are converted from their own spaces once
+  spec.metrics = per_pixel;
+  spec.metric_options.glints = selected.glints;
+  spec.metric_options.pooled = selected.pooled;
+  spec.reference.enabled = bool(p.reference);
+  spec.reference.grid = 0;
+  spec.reference.frames = o.reference;
+  spec.reference.frames_b = o.reference_b;
+  spec.output.exr = false;
+  spec.output.png = o.report;  // previews are for the report: a CI job with --no-report writes none
+  spec.output.every = std::max(1, int((p.numbers.size() + 7) / 8));  // at most 8 previews a sequence
+  spec.output.contact_sheet = false;
+  if (!o.display.empty()) spec.output.display = o.display;
+  if (!o.view.empty()) spec.output.view = o.view;
+  spec.output.exposure = o.exposure;
+  for (size_t i = 0; i < p.tests.size(); ++i) {
+    VariantSpec v;
+    v.name = p.test_names[i];
+    v.frames = o.tests[i].seq;
+    spec.variants.push_back(v);
+  }
+  spec.source = source;
+}
+
+// Everything the options and the headers say; ConfigError or std::invalid_argument on bad input.
+Setup resolve_measurement(const MeasureOptions& o, const metrics::ColorManager& cm, std::ostream& log) {
+  Setup s;
+  s.p.convention = checked_options(o);
+  std::vector<std::string> metric_list = o.metrics.empty() ? std::vector<std::string>{"deltaE2000", "flip"} : o.metrics;
+  metrics::MetricOptions selected;
+  std::vector<std::string> per_pixel;
+  try {
+    per_pixel = metrics::select_metrics(metric_list, selected);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(std::string("--metrics: ") + e.what());
+  }
+  if (!o.space.empty()) (void)cm.canonical_name(o.space);
+  check_name(o.name, "--name");
+
+  open_colour_sequences(o, cm, log, s.p);
+  resolve_motion(o, s);
+  describe_run(o, metric_list, per_pixel, selected, s);
+  return s;
+}
+
+// The frame loop of a measurement: frame k's inputs in, its records out to the journal and the
+// previews. Frames before first_missing (a resumed run's) are measured again for the temporal state
+// and not recorded again.
+class MeasureLoop {
+ public:
+  MeasureLoop(const Setup& s, const MeasureOptions& o, const metrics::FrameMetrics& measure, Journal& journal,
+              ImageWriter& images, Progress& progress, std::ostream& log, int first_missing)
+      : p(s.p), spec(s.spec), o(o), measure(measure), journal(&journal), images(images), progress(progress),
+        log(log), first_missing(first_missing), trackers(s.p.tests.size()) {}
+  void frame(int k, FrameInput& in);
+
+ private:
+  Image motion_of(int k, FrameInput& in) const;
+  FrameRecord test_record(int k, size_t i, const FrameInput& in, const Image& motion, size_t motion_bad,
+                          const metrics::MotionExplained& me, const metrics::NamedValues& floor);
+
+  const Plan& p;
+  const ExperimentSpec& spec;
+  const MeasureOptions& o;
+  const metrics::FrameMetrics& measure;
+  Journal* journal;
+  ImageWriter& images;
+  Progress& progress;
+  std::ostream& log;
+  const int first_missing;
+  std::vector<metrics::FlickerTracker> trackers;
+  metrics::FlickerTracker half_tracker;  // half B along the motion against half A: the noise floor
+  std::shared_ptr<const Image> prev_flow_base;  // kept only to estimate flow (no vectors given)
+  std::shared_ptr<const metrics::FlickerReference> prev_base;  // the motion check's frame before
+};
+
+// The motion of frame k in glintlab's convention, with its mask: the files' vectors, optical flow from
+// the frame before, or none (the first frame).
+Image MeasureLoop::motion_of(int k, FrameInput& in) const {
+Image motion;
+    if (in.has_vectors) {
+      motion = std::move(in.motion);
+    } else if (k > 0 && prev_flow_base) {
+      metrics::FlowOptions flow;
+      flow.channel = 1;  // Y of XYZ
+      flow.forward_backward = true;
+      motion = metrics::estimate_motion(*prev_flow_base, *in.base_image, flow);
+    } else {
+      motion = Image(p.width, p.height, 4, 1.0f);
+      for (size_t i = 0; i < motion.pixel_count(); ++i) motion.data[4 * i] = motion.data[4 * i + 1] = 0.0f;
+    }
+  return motion;
+}
+
+void MeasureLoop::frame(int k, FrameInput& in) {
+  // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
+  const size_t motion_bad = in.motion_bad;
+  const Image motion = motion_of(k, in);
+  const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
+  const auto& own = in.own;
+  const std::shared_ptr<const metrics::FlickerReference> base = prepared ? prepared->flicker : own[0];
+  metrics::MotionExplained me;
+  const double nan = std::nan("");
+  me.given = me.negated = me.flip_y = me.flip_x = nan;
+  if (k > 0 && prev_base) me = metrics::motion_explained(prev_base->pq, base->pq, p.width, p.height, motion);
+  const bool emit_reference = k >= first_missing;
+  metrics::NamedValues halves_metrics, floor;
+  if (in.half_b) {
+    if (k == 0) half_tracker.reset();
+    halves_metrics = measure.measure(*in.half_b, *in.half_a, motion, half_tracker);
+    floor = metrics::noise_floor(halves_metrics);
+  }
+  if (in.reference && emit_reference) {
+    ReferenceRecord rr;
+    rr.reference = 0;
+    rr.name = "reference";
+    rr.frame = k;
+    rr.image = in.base_image.get();
+    rr.cached = false;
+    rr.wall_ms = in.reference->read_ms;
+    rr.gpu_ms = nan;
+    rr.halves_metrics = halves_metrics;
+    for (RecordSink* s : std::initializer_list<RecordSink*>{journal, &images}) s->reference(rr);
+  }
+  if (in.reference && !in.reference->scan.clean() && emit_reference)
+    log << "\nwarning: the reference frame " << p.numbers[size_t(k)] << " ('" << p.reference->paths[size_t(k)]
+        << "') has " << in.reference->scan.nan << " NaN, " << in.reference->scan.infinite << " Inf, "
+        << in.reference->scan.negative << " negative pixels: every metric of that frame is NaN\n";
+  if (motion_bad > 0 && emit_reference)
+    log << "\nwarning: motion vectors of frame " << p.numbers[size_t(k)] << " have " << motion_bad
+        << " non-finite pixels (left out of the flicker means)\n";
+  for (size_t i = 0; i < p.tests.size(); ++i) {
+    const ColourFrame& t = in.tests[i];
+    FrameRecord rec = test_record(k, i, in, motion, motion_bad, me, floor);
+    if (k >= first_missing && !journal->has_frame(int(i), k)) {
+      if (!t.scan.clean()) {
+        log << "\nwarning: " << rec.name << " frame " << p.numbers[size_t(k)] << ": " << t.scan.nan << " NaN, "
+            << t.scan.infinite << " Inf, " << t.scan.negative << " negative pixels\n";
+      }
+      journal->frame(rec);
+      images.frame(rec);
+    }
+    std::ostringstream detail;
+    detail << rec.name << " frame " << p.numbers[size_t(k)] << (k < first_missing ? " (replay)" : "");
+    progress.step(detail.str());
+  }
+  if (!in.has_vectors) prev_flow_base = in.base_image;
+  prev_base = base;  // shared with the trackers, which keep it too
+}
+
+// The record of test i at frame k: its metrics against the prepared reference (or its own flicker
+// without one; a frame or reference with bad pixels makes every metric but the pixel counts NaN), the
+// truth's noise floor, the motion check and the pixel counts.
+FrameRecord MeasureLoop::test_record(int k, size_t i, const FrameInput& in, const Image& motion, size_t motion_bad,
+                                     const metrics::MotionExplained& me, const metrics::NamedValues& floor) {
+  const ColourFrame& t = in.tests[i];
+  const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
+  const auto& own = in.own;
+  const double nan = std::nan("");
+  FrameRecord rec;
+  rec.variant = int(i);
+  rec.name = spec.variants[i].name;
+  rec.frame = k;
+  rec.time_s = k / o.fps;
+  rec.sequence_start = k == 0;
+  rec.spp = 0;
+  rec.gpu_ms = nan;
+  rec.wall_ms = t.read_ms;
+  rec.scan = t.scan;
+  rec.image = &t.image;
+  if (k == 0) trackers[i].reset();
+  if (prepared) {
+    rec.metrics = measure.measure(t.image, *prepared, motion, trackers[i], &rec.metric_cost_ms);
+  } else {  // no reference: the test's own flicker
+    auto t0 = Clock::now();
+    std::optional<metrics::FlickerFrame> f = trackers[i].push(t.image, own[i], motion);
+    rec.metrics.emplace_back("flicker_contrast", f ? f->flicker_contrast : nan);
+    rec.metrics.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
+    rec.metrics.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
+    rec.metric_cost_ms.emplace_back("flicker", ms_since(t0));
+  }
+  const bool bad_ref = in.reference && !in.reference->scan.clean();
+  if (!t.scan.clean() || bad_ref)
+    for (auto& [n, v] : rec.metrics)
+      if (n.size() < 3 || n.compare(n.size() - 3, 3, "_px") != 0) v = nan;
+  rec.floor = floor;
+  rec.metrics.emplace_back("motion_explained", me.given);
+  rec.metrics.emplace_back("motion_explained_negated", me.negated);
+  rec.metrics.emplace_back("motion_explained_flip_y", me.flip_y);
+  rec.metrics.emplace_back("motion_explained_flip_x", me.flip_x);
+  rec.metrics.emplace_back("motion_nonfinite_px", double(motion_bad));
+  if (in.reference) {
+    rec.metrics.emplace_back("reference_nonfinite_px", double(in.reference->scan.nan + in.reference->scan.infinite));
+    rec.metrics.emplace_back("reference_negative_px", double(in.reference->scan.negative));
+  }
+  return rec;
+}
+
+// The journal's header: what the run is, and the content hash of every file it reads (its identity:
+// --resume continues only the same run).
+nlohmann::json journal_header(const Setup& s, const metrics::ColorManager& cm) {
+  const Plan& p = s.p;
   nlohmann::json hashes = nlohmann::json::object();
-  auto add_hashes = [&](const auto& s) {
-    for (const auto& path : s.paths)
+  auto add_hashes = [&](const auto& files) {
+    for (const auto& path : files.paths)
       if (!hashes.contains(path)) hashes[path] = file_content_hash(path);
   };
   if (p.reference) add_hashes(*p.reference);
@@ -504,186 +666,48 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
   for (const auto& t : p.tests) add_hashes(t);
   if (p.motion) add_hashes(*p.motion);
   if (p.depth) add_hashes(*p.depth);
-  const nlohmann::json header = {{"type", "run"},
-                                 {"glintlab_version", version()},
-                                 {"command", "measure"},
-                                 {"file", ""},
-                                 {"source", source},
-                                 {"content_hash", core::hash_hex(dump_json(source))},
-                                 {"inputs", hashes},
-                                 {"ocio_config", file_content_hash(cm.config_path())},
-                                 {"overrides", nlohmann::json::object()},
-                                 {"shard", {0, 1}}};
-  const fs::path out_dir(o.out_dir);
-  fs::create_directories(out_dir);
-  std::unique_ptr<Journal> journal;
-  try {
-    journal = std::make_unique<Journal>(out_dir, header, o.resume);
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  return {{"type", "run"},
+          {"glintlab_version", version()},
+          {"command", "measure"},
+          {"file", ""},
+          {"source", s.source},
+          {"content_hash", core::hash_hex(dump_json(s.source))},
+          {"inputs", hashes},
+          {"ocio_config", file_content_hash(cm.config_path())},
+          {"overrides", nlohmann::json::object()},
+          {"shard", {0, 1}}};
+}
 
+// The run's plan: one variant a test, each measured against the one reference (if any).
+RunPlan measure_plan(const Setup& s) {
   RunPlan plan;
-  plan.spec = &spec;
-  plan.frames = spec.frames;
+  plan.spec = &s.spec;
+  plan.frames = s.spec.frames;
   plan.measure = true;
-  for (const auto& v : spec.variants) {
+  for (const auto& v : s.spec.variants) {
     RunPlan::Variant pv;
     pv.spec = &v;
-    pv.reference = p.reference ? 0 : -1;
+    pv.reference = s.p.reference ? 0 : -1;
     plan.variants.push_back(pv);
   }
-  if (p.reference) {
+  if (s.p.reference) {
     RunPlan::Reference r;
     r.name = "reference";
     for (size_t i = 0; i < plan.variants.size(); ++i) r.variants.push_back(int(i));
     plan.references.push_back(r);
   }
+  return plan;
+}
 
-  try {
-    journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
-  log << "measure: " << p.tests.size() << " test sequence(s)" << (p.reference ? " against a reference" : ", no reference")
-      << ", frames " << p.numbers.front() << " to " << p.numbers.back() << " at " << p.width << "x" << p.height
-      << "; motion " << motion_kind << " (" << motion_source << "); disocclusion: " << disocclusion << "\n";
-  if (p.reference_b)
-    log << "noise floor: the reference's two halves (--reference and --reference-b): the truth is their mean, "
-           "each metric's floor half their difference (frames.csv floor_*, summary.json references[].floor)\n";
-  else if (p.reference)
-    log << "no floor: the reference is one estimate; give it as two independent halves (--reference-b SEQ) for "
-           "its noise floor\n";
-  if (motion_kind == "estimated")
-    log << "note: no motion vectors given: flicker is measured along optical flow estimated from "
-        << (p.reference ? "the reference" : "the first test") << ", marked \"motion\": \"estimated\"\n";
-
-  // ---- the frames this invocation does: from the first one the journal lacks (its predecessor is
-  // read again for the temporal state, not recorded again)
-  const int count = int(p.numbers.size());
-  int first_missing = count;
-  for (int k = 0; k < count && first_missing == count; ++k)
-    for (size_t i = 0; i < p.tests.size(); ++i)
-      if (!journal->has_frame(int(i), k)) first_missing = std::min(first_missing, k);
-  if (o.resume) log << "resume: " << journal->frames().size() << " frame record(s) done\n";
-
-  ImageWriter images(out_dir, plan, cm);
-  std::vector<metrics::FlickerTracker> trackers(p.tests.size());
-  metrics::FlickerTracker half_tracker;  // half B along the motion against half A: the noise floor
-  if (first_missing < count) {
-    const int start = std::max(0, first_missing - 1);
-    Progress progress(log, o.name, int(p.tests.size()) * (count - start));
-    if (!next.valid()) next = read(start, nullptr);  // (a new run's frame 0 is being read already)
-    std::shared_ptr<const Image> prev_flow_base;  // kept only to estimate flow (no vectors given)
-    std::shared_ptr<const metrics::FlickerReference> prev_base;  // the motion check's frame before
-    for (int k = start; k < count; ++k) {
-      FrameInput in = next.get();
-      if (k + 1 < count) next = read(k + 1, in.forward);
-      // ---- the motion of frame k in glintlab's convention, with its mask
-      Image motion;
-      const size_t motion_bad = in.motion_bad;
-      if (in.has_vectors) {
-        motion = std::move(in.motion);
-      } else if (k > 0 && prev_flow_base) {
-        metrics::FlowOptions flow;
-        flow.channel = 1;  // Y of XYZ
-        flow.forward_backward = true;
-        motion = metrics::estimate_motion(*prev_flow_base, *in.base_image, flow);
-      } else {
-        motion = Image(p.width, p.height, 4, 1.0f);
-        for (size_t i = 0; i < motion.pixel_count(); ++i) motion.data[4 * i] = motion.data[4 * i + 1] = 0.0f;
-      }
-      // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
-      const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
-      const auto& own = in.own;
-      const std::shared_ptr<const metrics::FlickerReference> base = prepared ? prepared->flicker : own[0];
-      metrics::MotionExplained me;
-      const double nan = std::nan("");
-      me.given = me.negated = me.flip_y = me.flip_x = nan;
-      if (k > 0 && prev_base) me = metrics::motion_explained(prev_base->pq, base->pq, p.width, p.height, motion);
-      const bool emit_reference = k >= first_missing;
-      metrics::NamedValues halves_metrics, floor;
-      if (in.half_b) {
-        if (k == 0) half_tracker.reset();
-        halves_metrics = measure.measure(*in.half_b, *in.half_a, motion, half_tracker);
-        floor = metrics::noise_floor(halves_metrics);
-      }
-      if (in.reference && emit_reference) {
-        ReferenceRecord rr;
-        rr.reference = 0;
-        rr.name = "reference";
-        rr.frame = k;
-        rr.image = in.base_image.get();
-        rr.cached = false;
-        rr.wall_ms = in.reference->read_ms;
-        rr.gpu_ms = nan;
-        rr.halves_metrics = halves_metrics;
-        for (RecordSink* s : std::initializer_list<RecordSink*>{journal.get(), &images}) s->reference(rr);
-      }
-      if (in.reference && !in.reference->scan.clean() && emit_reference)
-        log << "\nwarning: the reference frame " << p.numbers[size_t(k)] << " ('" << p.reference->paths[size_t(k)]
-            << "') has " << in.reference->scan.nan << " NaN, " << in.reference->scan.infinite << " Inf, "
-            << in.reference->scan.negative << " negative pixels: every metric of that frame is NaN\n";
-      if (motion_bad > 0 && emit_reference)
-        log << "\nwarning: motion vectors of frame " << p.numbers[size_t(k)] << " have " << motion_bad
-            << " non-finite pixels (left out of the flicker means)\n";
-      for (size_t i = 0; i < p.tests.size(); ++i) {
-        const ColourFrame& t = in.tests[i];
-        FrameRecord rec;
-        rec.variant = int(i);
-        rec.name = spec.variants[i].name;
-        rec.frame = k;
-        rec.time_s = k / o.fps;
-        rec.sequence_start = k == 0;
-        rec.spp = 0;
-        rec.gpu_ms = nan;
-        rec.wall_ms = t.read_ms;
-        rec.scan = t.scan;
-        rec.image = &t.image;
-        if (k == 0) trackers[i].reset();
-        if (prepared) {
-          rec.metrics = measure.measure(t.image, *prepared, motion, trackers[i], &rec.metric_cost_ms);
-        } else {  // no reference: the test's own flicker
-          auto t0 = Clock::now();
-          std::optional<metrics::FlickerFrame> f = trackers[i].push(t.image, own[i], motion);
-          rec.metrics.emplace_back("flicker_contrast", f ? f->flicker_contrast : nan);
-          rec.metrics.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
-          rec.metrics.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
-          rec.metric_cost_ms.emplace_back("flicker", ms_since(t0));
-        }
-        const bool bad_ref = in.reference && !in.reference->scan.clean();
-        if (!t.scan.clean() || bad_ref)
-          for (auto& [n, v] : rec.metrics)
-            if (n.size() < 3 || n.compare(n.size() - 3, 3, "_px") != 0) v = nan;
-        rec.floor = floor;
-        rec.metrics.emplace_back("motion_explained", me.given);
-        rec.metrics.emplace_back("motion_explained_negated", me.negated);
-        rec.metrics.emplace_back("motion_explained_flip_y", me.flip_y);
-        rec.metrics.emplace_back("motion_explained_flip_x", me.flip_x);
-        rec.metrics.emplace_back("motion_nonfinite_px", double(motion_bad));
-        if (in.reference) {
-          rec.metrics.emplace_back("reference_nonfinite_px", double(in.reference->scan.nan + in.reference->scan.infinite));
-          rec.metrics.emplace_back("reference_negative_px", double(in.reference->scan.negative));
-        }
-        if (k >= first_missing && !journal->has_frame(int(i), k)) {
-          if (!t.scan.clean()) {
-            log << "\nwarning: " << rec.name << " frame " << p.numbers[size_t(k)] << ": " << t.scan.nan << " NaN, "
-                << t.scan.infinite << " Inf, " << t.scan.negative << " negative pixels\n";
-          }
-          journal->frame(rec);
-          images.frame(rec);
-        }
-        std::ostringstream detail;
-        detail << rec.name << " frame " << p.numbers[size_t(k)] << (k < first_missing ? " (replay)" : "");
-        progress.step(detail.str());
-      }
-      if (!in.has_vectors) prev_flow_base = in.base_image;
-      prev_base = base;  // shared with the trackers, which keep it too
-    }
-  }
-
+// The outputs, from the journal: frames.csv, summary.json with the motion check over the run and its
+// warnings, the report; the console's lines. kExitDefect where a frame had NaN, Inf or negative pixels.
+int write_measure_outputs(const Setup& s, const MeasureOptions& o, const RunPlan& plan, Journal& journal_in,
+                          ImageWriter& images, const metrics::ColorManager& cm, const fs::path& out_dir,
+                          std::ostream& log) {
+  const Plan& p = s.p;
+  const nlohmann::json& source = s.source;
+  const std::string &motion_kind = s.motion_kind, &motion_source = s.motion_source, &disocclusion = s.disocclusion;
+  Journal* journal = &journal_in;
   // ---- outputs, from the journal; the motion check over the run
   MotionMeans mm;
   journal->replay(mm);
@@ -717,7 +741,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
       {"sources", source}};
   for (const auto& w : warnings) log << "warning: " << w.get<std::string>() << "\n";
   int report_status = kExitOk;
-  const nlohmann::json summary = write_run_outputs(out_dir, plan, {journal.get()},
+  const nlohmann::json summary = write_run_outputs(out_dir, plan, {journal},
                                                    RunInfo{"", cm.config_path(), 0, extra}, images, o.report,
                                                    &report_status, log);
   for (const auto& v : summary["variants"]) {
@@ -753,6 +777,94 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     return kExitDefect;
   }
   return report_status;
+}
+
+}  // namespace
+
+int measure_sequences(const MeasureOptions& o, std::ostream& log) {
+  share_one_heap_between_threads();  // frames are decoded on one thread and freed on another
+  const metrics::ColorManager cm = load_color_manager(o.ocio_config);
+  Setup s;
+  try {
+    s = resolve_measurement(o, cm, log);
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const Plan& p = s.p;
+  const ExperimentSpec& spec = s.spec;
+  // ---- the first frame read while the files are hashed (journal_header): a new run (no --resume)
+  // starts at frame 0
+  const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
+  auto read = [&p, &cm, &measure](int k, std::shared_ptr<const Image> prev_forward) {
+    return std::async(std::launch::async, [&p, &cm, &measure, k, prev_forward] {
+      return read_inputs(p, size_t(k), cm, measure, prev_forward);
+    });
+  };
+  // The loop's working set in 2 MiB pages: at most about 280 bytes a pixel and 70 more for each test
+  // (peak resident memory at 1920x1080: 570 MB with one test, whose reference's L*a*b* is not kept,
+  // 796 MB with two), at most what one call takes.
+  reserve_heap_in_huge_pages(
+      std::min(size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size()), kMaxHugeReservation));
+  std::future<FrameInput> next;
+  if (!o.resume) next = read(0, nullptr);
+
+  const fs::path out_dir(o.out_dir);
+  fs::create_directories(out_dir);
+  std::unique_ptr<Journal> journal;
+  try {
+    journal = std::make_unique<Journal>(out_dir, journal_header(s, cm), o.resume);
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  const RunPlan plan = measure_plan(s);
+
+  try {
+    journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
+  } catch (const ConfigError& e) {
+    log << "error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  log << "measure: " << p.tests.size() << " test sequence(s)" << (p.reference ? " against a reference" : ", no reference")
+      << ", frames " << p.numbers.front() << " to " << p.numbers.back() << " at " << p.width << "x" << p.height
+      << "; motion " << s.motion_kind << " (" << s.motion_source << "); disocclusion: " << s.disocclusion << "\n";
+  if (p.reference_b)
+    log << "noise floor: the reference's two halves (--reference and --reference-b): the truth is their mean, "
+           "each metric's floor half their difference (frames.csv floor_*, summary.json references[].floor)\n";
+  else if (p.reference)
+    log << "no floor: the reference is one estimate; give it as two independent halves (--reference-b SEQ) for "
+           "its noise floor\n";
+  if (s.motion_kind == "estimated")
+    log << "note: no motion vectors given: flicker is measured along optical flow estimated from "
+        << (p.reference ? "the reference" : "the first test") << ", marked \"motion\": \"estimated\"\n";
+
+  // ---- the frames this invocation does: from the first one the journal lacks (its predecessor is
+  // read again for the temporal state, not recorded again)
+  const int count = int(p.numbers.size());
+  int first_missing = count;
+  for (int k = 0; k < count && first_missing == count; ++k)
+    for (size_t i = 0; i < p.tests.size(); ++i)
+      if (!journal->has_frame(int(i), k)) first_missing = std::min(first_missing, k);
+  if (o.resume) log << "resume: " << journal->frames().size() << " frame record(s) done\n";
+
+  ImageWriter images(out_dir, plan, cm);
+  if (first_missing < count) {
+    const int start = std::max(0, first_missing - 1);
+    Progress progress(log, o.name, int(p.tests.size()) * (count - start));
+    MeasureLoop loop(s, o, measure, *journal, images, progress, log, first_missing);
+    if (!next.valid()) next = read(start, nullptr);  // (a new run's frame 0 is being read already)
+    for (int k = start; k < count; ++k) {
+      FrameInput in = next.get();
+      if (k + 1 < count) next = read(k + 1, in.forward);
+      loop.frame(k, in);
+    }
+  }
+  return write_measure_outputs(s, o, plan, *journal, images, cm, out_dir, log);
 }
 
 }  // namespace glintlab
