@@ -159,19 +159,11 @@ std::string check_positive(double v, const char* option, const char* what) {
   return std::string(option) + " must be a finite number > 0 (" + what + "), got " + num_str(v);
 }
 
-}  // namespace
+// Bad input: what the CLI exits 2 for (cli/exit_codes.h).
+std::invalid_argument bad_input(const std::string& msg) { return std::invalid_argument(msg); }
 
-Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image, const std::vector<CompareImage>& test_images,
-                          std::ostream& err) {
-  auto bad_input = [](const std::string& msg) { return std::invalid_argument(msg); };
-
-  // ---- options (bad input)
-  if (test_images.empty() || (ref_image.path.empty() && !ref_image.pixels))
-    throw bad_input("need a test image and a reference: `compare TEST REF` or `compare --reference REF --test TEST "
-                    "[TEST ...]`");
-  for (const CompareImage& t : test_images)
-    if (t.path.empty() && !t.pixels) throw bad_input("empty test image path");
-
+// The metric names asked for (all by default), each known. std::invalid_argument naming the allowed.
+std::vector<std::string> checked_metric_names(const CompareOptions& o) {
   std::vector<std::string> names = o.metrics.empty() ? metrics::metric_names() : o.metrics;
   const std::vector<std::string> known = metrics::metric_names();
   for (const auto& n : names)
@@ -180,12 +172,13 @@ Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image
   if (names.empty()) throw bad_input("no metrics registered");
   if (!(o.itp_nits > 0.0) || !std::isfinite(o.itp_nits))
     throw bad_input("--itp-nits must be a positive number of cd/m^2, got " + num_str(o.itp_nits));
-  Comparison c;
-  c.want_flip = std::find(names.begin(), names.end(), "flip") != names.end();
-  c.threshold = o.threshold;
-  const bool want_flip = c.want_flip;
+  return names;
+}
 
-  CompareFlipSetup& flip = c.flip;
+// FLIP's viewing conditions and HDR settings from the options, each checked (std::invalid_argument
+// naming the option); the exposures are resolved later, from the reference.
+CompareFlipSetup checked_flip_setup(const CompareOptions& o, bool want_flip, std::ostream& err) {
+  CompareFlipSetup flip;
   flip.hdr = !o.flip_ldr;
   for (const std::string& m : {check_positive(o.ppd, "--ppd", "pixels per degree"),
                                check_positive(o.monitor_distance, "--monitor-distance", "metres"),
@@ -236,6 +229,70 @@ Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image
     throw bad_input("--threshold tests the mean FLIP error, but --metric leaves out flip; add --metric flip");
   if (!want_flip && (hdr_options_given || o.flip_ldr || !std::isnan(o.ppd) || viewing))
     err << "compare: warning: FLIP options given, but --metric leaves out flip; they are ignored\n";
+
+  return flip;
+}
+
+// One test against the reference: every metric asked for, NaN where an input has bad pixels, and
+// whether the mean FLIP error is above --threshold (said on err).
+void compare_test(const CompareOptions& o, const std::vector<std::string>& names, const CompareFlipSetup& flip,
+                  const metrics::HdrFlipOptions& resolved, const metrics::MetricOptions& mo, const CompareInput& ref,
+                  bool clean_pair, CompareTest& tr, std::ostream& err) {
+  const CompareInput& test = tr.input;
+  tr.clean = clean_pair;
+  for (const auto& n : names) {
+    CompareMetric e;
+    if (n == "flip") {
+      e.is_flip = true;
+      e.result.name = n;
+      e.result.unit = "FLIP";
+      e.result.map = flip.hdr ? metrics::hdr_flip_map(test.xyz, ref.xyz, flip.ppd, resolved)
+                              : metrics::ldr_flip_map(test.xyz, ref.xyz, flip.ppd);
+      e.pooled = metrics::flip_pooled(e.result.map);
+      e.result.mean = e.pooled.mean;
+      e.result.max = e.pooled.max;
+    } else {
+      e.result = metrics::evaluate_metric(n, test.xyz, ref.xyz, mo);
+    }
+    if (n != "psnr") e.p95 = metrics::map_percentile(e.result.map, 0.95);
+    if (!tr.clean) {
+      e.result.mean = e.result.max = e.p95 = kNaN;
+      e.pooled.mean = e.pooled.weighted_median = e.pooled.weighted_quartile_1 = e.pooled.weighted_quartile_3 =
+          e.pooled.min = e.pooled.max = kNaN;
+    }
+    if (e.is_flip && !std::isnan(o.threshold) && e.result.mean > o.threshold) tr.threshold_exceeded = true;
+    tr.metrics.push_back(std::move(e));
+  }
+  if (!tr.clean)
+    err << "compare: test '" << test.path << "' against '" << ref.path
+        << "': NaN, Inf or negative input pixels, so every metric is NaN\n";
+  if (tr.threshold_exceeded) {
+    const double m = std::find_if(tr.metrics.begin(), tr.metrics.end(), [](const CompareMetric& e) {
+                       return e.is_flip;
+                     })->result.mean;
+    err << "compare: mean FLIP error of '" << test.path << "' is " << m << ", above --threshold " << o.threshold
+        << "\n";
+  }
+}
+
+}  // namespace
+
+Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image, const std::vector<CompareImage>& test_images,
+                          std::ostream& err) {
+
+  // ---- options (bad input)
+  if (test_images.empty() || (ref_image.path.empty() && !ref_image.pixels))
+    throw bad_input("need a test image and a reference: `compare TEST REF` or `compare --reference REF --test TEST "
+                    "[TEST ...]`");
+  for (const CompareImage& t : test_images)
+    if (t.path.empty() && !t.pixels) throw bad_input("empty test image path");
+  const std::vector<std::string> names = checked_metric_names(o);
+  Comparison c;
+  c.want_flip = std::find(names.begin(), names.end(), "flip") != names.end();
+  c.threshold = o.threshold;
+  const bool want_flip = c.want_flip;
+  c.flip = checked_flip_setup(o, want_flip, err);
+  CompareFlipSetup& flip = c.flip;
 
   metrics::MetricOptions mo;
   mo.itp_luminance_nits = o.itp_nits;
@@ -314,43 +371,8 @@ Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image
   resolved.start_exposure = flip.exposures.start;
   resolved.stop_exposure = flip.exposures.stop;
   resolved.num_exposures = flip.exposures.count;
-  for (CompareTest& tr : c.tests) {
-    const CompareInput& test = tr.input;
-    tr.clean = clean(test) && clean(ref);
-    for (const auto& n : names) {
-      CompareMetric e;
-      if (n == "flip") {
-        e.is_flip = true;
-        e.result.name = n;
-        e.result.unit = "FLIP";
-        e.result.map = flip.hdr ? metrics::hdr_flip_map(test.xyz, ref.xyz, flip.ppd, resolved)
-                                : metrics::ldr_flip_map(test.xyz, ref.xyz, flip.ppd);
-        e.pooled = metrics::flip_pooled(e.result.map);
-        e.result.mean = e.pooled.mean;
-        e.result.max = e.pooled.max;
-      } else {
-        e.result = metrics::evaluate_metric(n, test.xyz, ref.xyz, mo);
-      }
-      if (n != "psnr") e.p95 = metrics::map_percentile(e.result.map, 0.95);
-      if (!tr.clean) {
-        e.result.mean = e.result.max = e.p95 = kNaN;
-        e.pooled.mean = e.pooled.weighted_median = e.pooled.weighted_quartile_1 = e.pooled.weighted_quartile_3 =
-            e.pooled.min = e.pooled.max = kNaN;
-      }
-      if (e.is_flip && !std::isnan(o.threshold) && e.result.mean > o.threshold) tr.threshold_exceeded = true;
-      tr.metrics.push_back(std::move(e));
-    }
-    if (!tr.clean)
-      err << "compare: test '" << test.path << "' against '" << ref.path
-          << "': NaN, Inf or negative input pixels, so every metric is NaN\n";
-    if (tr.threshold_exceeded) {
-      const double m = std::find_if(tr.metrics.begin(), tr.metrics.end(), [](const CompareMetric& e) {
-                         return e.is_flip;
-                       })->result.mean;
-      err << "compare: mean FLIP error of '" << test.path << "' is " << m << ", above --threshold " << o.threshold
-          << "\n";
-    }
-  }
+  for (CompareTest& tr : c.tests)
+    compare_test(o, names, flip, resolved, mo, ref, clean(tr.input) && clean(ref), tr, err);
   return c;
 }
 
