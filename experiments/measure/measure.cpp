@@ -785,15 +785,9 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
   share_one_heap_between_threads();  // frames are decoded on one thread and freed on another
   const metrics::ColorManager cm = load_color_manager(o.ocio_config);
   Setup s;
-  try {
-    s = resolve_measurement(o, cm, log);
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::invalid_argument& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (const int code = run_guarded([&] { s = resolve_measurement(o, cm, log); return int(kExitOk); }, log);
+      code != kExitOk)
+    return code;
   const Plan& p = s.p;
   const ExperimentSpec& spec = s.spec;
   // ---- the first frame read while the files are hashed (journal_header): a new run (no --resume)
