@@ -8,24 +8,23 @@
 #include "experiments/cli/exit_codes.h"
 #include "experiments/measure/motion_convention.h"
 #include "experiments/measure/sequence.h"
+#include "experiments/runner/frame_loop.h"
 #include "experiments/runner/journal.h"
 #include "experiments/runner/output_writers.h"
 #include "experiments/runner/plan.h"
-#include "experiments/runner/progress.h"
 #include "experiments/runner/version.h"
+#include "experiments/runner/work_schedule.h"
+#include "experiments/sources/file_sources.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/color/measurement_space.h"
 #include "metrics/frame_metrics.h"
 #include "metrics/motion_check.h"
-#include "metrics/optical_flow.h"
 #include "metrics/pixel_scan.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <future>
 #include <iomanip>
 #include <map>
 #include <optional>
@@ -39,7 +38,6 @@ namespace glintlab {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 // A test's name becomes a folder of previews: the one rule of variant names (experiment_spec.h).
 void check_name(const std::string& name, const std::string& what) {
@@ -61,17 +59,9 @@ std::string default_name(const SequenceSpec& seq) {
   return base;
 }
 
-// A sequence of vectors or depth, resolved against its files (colour sequences are FrameFiles).
-struct Source {
-  std::string what;  // for messages: "--motion", "--depth"
-  SequenceSpec seq;
-  std::vector<std::string> paths;     // the selected frames, in order
-  std::vector<std::string> channels;  // what is read of each frame
-};
-
 // Lists `text`'s frames and picks those with the given numbers (every one must exist).
-Source resolve(const std::string& what, const std::string& text, const std::vector<int>& numbers) {
-  Source s;
+ChannelFiles resolve(const std::string& what, const std::string& text, const std::vector<int>& numbers) {
+  ChannelFiles s;
   s.what = what;
   s.seq = parse_sequence(text, what);
   s.paths = frame_paths(s.seq, numbers, what);
@@ -98,7 +88,7 @@ std::vector<int> select_numbers(const std::string& what, const std::string& text
 }
 
 // Every frame of a source: one size, the channels present, within the pixel limit.
-void check_headers(const Source& s, int* width, int* height) {
+void check_headers(const ChannelFiles& s, int* width, int* height) {
   for (const auto& path : s.paths) {
     const FrameHeader h = read_frame_header(path);
     if (*width == 0) *width = h.width, *height = h.height;
@@ -133,118 +123,16 @@ std::string vector_layer(MotionConvention c, const FrameHeader& h, const std::st
   return "";
 }
 
-// Everything read for one frame index, decoded ahead of the measurement on another thread.
-struct FrameInput {
-  std::optional<ColourFrame> reference;  // images in CIE XYZ D65 (the reference's image moved to base_image)
-  std::vector<ColourFrame> tests;
-  // From the vector files (and depth): the motion image the flicker tracker reads, made here too, the
-  // count of its non-finite vectors, and the vectors to the next frame (for the next frame's check).
-  bool has_vectors = false;
-  Image motion;
-  size_t motion_bad = 0;
-  std::shared_ptr<const Image> forward;
-  // The reference's view of the metrics, prepared here too (on the reading thread, while the frame
-  // before is measured); without a reference each test's own flicker state.
-  std::shared_ptr<const Image> base_image;  // the reference (shared with `prepared`), or a copy of test 0 for flow
-  std::optional<metrics::FrameMetrics::Reference> prepared;
-  std::vector<std::shared_ptr<const metrics::FlickerReference>> own;
-  // Where the reference is given as two halves: half A prepared, and half B, measured against it for
-  // the noise floor (the reference above is then their mean).
-  std::optional<metrics::FrameMetrics::Reference> half_a;
-  std::shared_ptr<const Image> half_b;
-};
-
 struct Plan {
   std::optional<FrameFiles> reference, reference_b;
   std::vector<FrameFiles> tests;
   std::vector<std::string> test_names;
-  std::optional<Source> motion, depth;
+  std::optional<ChannelFiles> motion, depth;
   MotionConvention convention = MotionConvention::Pixels;
   MotionChannels motion_channels;
   std::vector<int> numbers;
   int width = 0, height = 0;
 };
-
-// The truth from its two halves: their mean, channel by channel (in CIE XYZ, where the mean of two
-// estimates of light is the estimate of their samples together).
-Image mean_of_halves(const Image& a, const Image& b) {
-  Image m = a;
-  for (size_t i = 0; i < m.data.size(); ++i) m.data[i] = 0.5f * (a.data[i] + b.data[i]);
-  return m;
-}
-
-// A defect in either half is a defect of the truth.
-metrics::PixelScan combined_scan(const metrics::PixelScan& a, const metrics::PixelScan& b) {
-  metrics::PixelScan s = a;
-  s.nan += b.nan;
-  s.pos_inf += b.pos_inf;
-  s.neg_inf += b.neg_inf;
-  s.infinite += b.infinite;
-  s.negative += b.negative;
-  return s;
-}
-
-// prev_forward: the vectors to the next frame of frame k - 1, where the files have them.
-FrameInput read_inputs(const Plan& p, size_t k, const metrics::ColorManager& cm, const metrics::FrameMetrics& measure,
-                       const std::shared_ptr<const Image>& prev_forward) {
-  FrameInput in;
-  // The reference on a thread of its own beside the tests and the vectors: whenever the metrics of
-  // the frame before leave a core free, two files are decoded at once.
-  // It is prepared for the metrics there too, as soon as it is read.
-  struct PreparedReference {
-    ColourFrame frame;  // its image moved to `base`
-    std::shared_ptr<const Image> base;
-    metrics::FrameMetrics::Reference prepared;
-    std::optional<metrics::FrameMetrics::Reference> half_a;
-    std::shared_ptr<const Image> half_b;
-  };
-  std::future<PreparedReference> ref;
-  if (p.reference)
-    ref = std::async(std::launch::async, [&] {
-      PreparedReference r{read_colour_frame(*p.reference, k, cm, metrics::kXyzD65Space), nullptr, {}, {}, {}};
-      if (p.reference_b) {  // two halves: the truth is their mean, half A is kept for the floor
-        ColourFrame b = read_colour_frame(*p.reference_b, k, cm, metrics::kXyzD65Space);
-        auto a = std::make_shared<const Image>(std::move(r.frame.image));
-        r.frame.image = mean_of_halves(*a, b.image);
-        r.frame.scan = combined_scan(r.frame.scan, b.scan);
-        r.frame.read_ms += b.read_ms;
-        r.half_a = measure.prepare(a, false);
-        r.half_b = std::make_shared<const Image>(std::move(b.image));
-      }
-      r.base = std::make_shared<const Image>(std::move(r.frame.image));
-      r.prepared = measure.prepare(r.base, p.tests.size() > 1);
-      return r;
-    });
-  for (const auto& t : p.tests) in.tests.push_back(read_colour_frame(t, k, cm, metrics::kXyzD65Space));
-  if (p.motion) {
-    Image raw = read_frame_channels(p.motion->paths[k], p.motion->channels);
-    if (is_flicker_motion(p.convention, p.motion_channels)) {
-      in.motion = std::move(raw);  // glintlab's own four channels: already what the tracker reads
-    } else {
-      MotionVectors v = convert_motion(p.convention, raw, p.motion_channels);
-      std::optional<Image> depth;
-      if (p.depth) depth = read_frame_channels(p.depth->paths[k], p.depth->channels);
-      in.motion = flicker_motion(v, depth ? &*depth : nullptr, prev_forward.get());
-      if (v.forward) in.forward = std::make_shared<const Image>(std::move(*v.forward));
-    }
-    for (size_t i = 0; i < in.motion.pixel_count(); ++i)  // counted; the tracker masks them (off-screen)
-      in.motion_bad += !(std::isfinite(in.motion.data[4 * i]) && std::isfinite(in.motion.data[4 * i + 1]));
-    in.has_vectors = true;
-  }
-  if (ref.valid()) {
-    PreparedReference r = ref.get();
-    in.reference = std::move(r.frame);
-    in.base_image = std::move(r.base);
-    in.prepared = std::move(r.prepared);
-    in.half_a = std::move(r.half_a);
-    in.half_b = std::move(r.half_b);
-  } else {
-    if (!in.has_vectors) in.base_image = std::make_shared<const Image>(in.tests[0].image);  // measured too: a copy
-    for (const auto& t : in.tests)
-      in.own.push_back(std::make_shared<const metrics::FlickerReference>(metrics::flicker_reference(t.image)));
-  }
-  return in;
-}
 
 // Means of the motion check over the frames, from the journal (variant 0's rows).
 struct MotionMeans final : RecordSink {
@@ -365,7 +253,7 @@ void resolve_motion(const MeasureOptions& o, Setup& s) {
                                                                     : std::string();
   if (!o.motion.empty() || !colour_of_motion.empty()) {
     const std::string what = !colour_of_motion.empty() ? "--motion-from " + o.motion_from : "--motion";
-    Source m = resolve(what, colour_of_motion.empty() ? o.motion : colour_of_motion, p.numbers);
+    ChannelFiles m = resolve(what, colour_of_motion.empty() ? o.motion : colour_of_motion, p.numbers);
     const FrameHeader h = read_frame_header(m.paths[0]);
     std::string layer = m.seq.layer;
     if (!colour_of_motion.empty()) {
@@ -394,7 +282,7 @@ void resolve_motion(const MeasureOptions& o, Setup& s) {
     motion_source = std::string("optical flow (OpenCV DIS) of ") + (p.reference ? "the reference" : "the first test");
   }
   if (!o.depth.empty()) {
-    Source d = resolve("--depth", o.depth, p.numbers);
+    ChannelFiles d = resolve("--depth", o.depth, p.numbers);
     const FrameHeader h = read_frame_header(d.paths[0]);
     auto z = find_channels(h, d.seq.layer, {{"Z", "z", "Y", "R", "depth", "Depth", "Depth.Z"}});
     if (z[0].empty())
@@ -499,159 +387,6 @@ Setup resolve_measurement(const MeasureOptions& o, const metrics::ColorManager& 
   return s;
 }
 
-// The frame loop of a measurement: frame k's inputs in, its records out to the journal and the
-// previews. Frames before first_missing (a resumed run's) are measured again for the temporal state
-// and not recorded again.
-class MeasureLoop {
- public:
-  MeasureLoop(const Setup& s, const MeasureOptions& o, const metrics::FrameMetrics& measure, Journal& journal,
-              ImageWriter& images, Progress& progress, std::ostream& log, int first_missing)
-      : p(s.p), spec(s.spec), o(o), measure(measure), journal(&journal), images(images), progress(progress),
-        log(log), first_missing(first_missing), trackers(s.p.tests.size()) {}
-  void frame(int k, FrameInput& in);
-
- private:
-  Image motion_of(int k, FrameInput& in) const;
-  FrameRecord test_record(int k, size_t i, const FrameInput& in, const Image& motion, size_t motion_bad,
-                          const metrics::MotionExplained& me, const metrics::NamedValues& floor);
-
-  const Plan& p;
-  const ExperimentSpec& spec;
-  const MeasureOptions& o;
-  const metrics::FrameMetrics& measure;
-  Journal* journal;
-  ImageWriter& images;
-  Progress& progress;
-  std::ostream& log;
-  const int first_missing;
-  std::vector<metrics::FlickerTracker> trackers;
-  metrics::FlickerTracker half_tracker;  // half B along the motion against half A: the noise floor
-  std::shared_ptr<const Image> prev_flow_base;  // kept only to estimate flow (no vectors given)
-  std::shared_ptr<const metrics::FlickerReference> prev_base;  // the motion check's frame before
-};
-
-// The motion of frame k in glintlab's convention, with its mask: the files' vectors, optical flow from
-// the frame before, or none (the first frame).
-Image MeasureLoop::motion_of(int k, FrameInput& in) const {
-Image motion;
-    if (in.has_vectors) {
-      motion = std::move(in.motion);
-    } else if (k > 0 && prev_flow_base) {
-      metrics::FlowOptions flow;
-      flow.channel = 1;  // Y of XYZ
-      flow.forward_backward = true;
-      motion = metrics::estimate_motion(*prev_flow_base, *in.base_image, flow);
-    } else {
-      motion = Image(p.width, p.height, 4, 1.0f);
-      for (size_t i = 0; i < motion.pixel_count(); ++i) motion.data[4 * i] = motion.data[4 * i + 1] = 0.0f;
-    }
-  return motion;
-}
-
-void MeasureLoop::frame(int k, FrameInput& in) {
-  // ---- the reference's view of the metrics, and the motion check on the base sequence's own change
-  const size_t motion_bad = in.motion_bad;
-  const Image motion = motion_of(k, in);
-  const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
-  const auto& own = in.own;
-  const std::shared_ptr<const metrics::FlickerReference> base = prepared ? prepared->flicker : own[0];
-  metrics::MotionExplained me;
-  const double nan = std::nan("");
-  me.given = me.negated = me.flip_y = me.flip_x = nan;
-  if (k > 0 && prev_base) me = metrics::motion_explained(prev_base->pq, base->pq, p.width, p.height, motion);
-  const bool emit_reference = k >= first_missing;
-  metrics::NamedValues halves_metrics, floor;
-  if (in.half_b) {
-    if (k == 0) half_tracker.reset();
-    halves_metrics = measure.measure(*in.half_b, *in.half_a, motion, half_tracker);
-    floor = metrics::noise_floor(halves_metrics);
-  }
-  if (in.reference && emit_reference) {
-    ReferenceRecord rr;
-    rr.reference = 0;
-    rr.name = "reference";
-    rr.frame = k;
-    rr.image = in.base_image.get();
-    rr.cached = false;
-    rr.wall_ms = in.reference->read_ms;
-    rr.gpu_ms = nan;
-    rr.halves_metrics = halves_metrics;
-    for (RecordSink* s : std::initializer_list<RecordSink*>{journal, &images}) s->reference(rr);
-  }
-  if (in.reference && !in.reference->scan.clean() && emit_reference)
-    log << "\nwarning: the reference frame " << p.numbers[size_t(k)] << " ('" << p.reference->paths[size_t(k)]
-        << "') has " << in.reference->scan.nan << " NaN, " << in.reference->scan.infinite << " Inf, "
-        << in.reference->scan.negative << " negative pixels: every metric of that frame is NaN\n";
-  if (motion_bad > 0 && emit_reference)
-    log << "\nwarning: motion vectors of frame " << p.numbers[size_t(k)] << " have " << motion_bad
-        << " non-finite pixels (left out of the flicker means)\n";
-  for (size_t i = 0; i < p.tests.size(); ++i) {
-    const ColourFrame& t = in.tests[i];
-    FrameRecord rec = test_record(k, i, in, motion, motion_bad, me, floor);
-    if (k >= first_missing && !journal->has_frame(int(i), k)) {
-      if (!t.scan.clean()) {
-        log << "\nwarning: " << rec.name << " frame " << p.numbers[size_t(k)] << ": " << t.scan.nan << " NaN, "
-            << t.scan.infinite << " Inf, " << t.scan.negative << " negative pixels\n";
-      }
-      journal->frame(rec);
-      images.frame(rec);
-    }
-    std::ostringstream detail;
-    detail << rec.name << " frame " << p.numbers[size_t(k)] << (k < first_missing ? " (replay)" : "");
-    progress.step(detail.str());
-  }
-  if (!in.has_vectors) prev_flow_base = in.base_image;
-  prev_base = base;  // shared with the trackers, which keep it too
-}
-
-// The record of test i at frame k: its metrics against the prepared reference (or its own flicker
-// without one; a frame or reference with bad pixels makes every metric but the pixel counts NaN), the
-// truth's noise floor, the motion check and the pixel counts.
-FrameRecord MeasureLoop::test_record(int k, size_t i, const FrameInput& in, const Image& motion, size_t motion_bad,
-                                     const metrics::MotionExplained& me, const metrics::NamedValues& floor) {
-  const ColourFrame& t = in.tests[i];
-  const std::optional<metrics::FrameMetrics::Reference>& prepared = in.prepared;
-  const auto& own = in.own;
-  const double nan = std::nan("");
-  FrameRecord rec;
-  rec.variant = int(i);
-  rec.name = spec.variants[i].name;
-  rec.frame = k;
-  rec.time_s = k / o.fps;
-  rec.sequence_start = k == 0;
-  rec.spp = 0;
-  rec.gpu_ms = nan;
-  rec.wall_ms = t.read_ms;
-  rec.scan = t.scan;
-  rec.image = &t.image;
-  if (k == 0) trackers[i].reset();
-  if (prepared) {
-    rec.metrics = measure.measure(t.image, *prepared, motion, trackers[i], &rec.metric_cost_ms);
-  } else {  // no reference: the test's own flicker
-    auto t0 = Clock::now();
-    std::optional<metrics::FlickerFrame> f = trackers[i].push(t.image, own[i], motion);
-    rec.metrics.emplace_back("flicker_contrast", f ? f->flicker_contrast : nan);
-    rec.metrics.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
-    rec.metrics.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
-    rec.metric_cost_ms.emplace_back("flicker", ms_since(t0));
-  }
-  const bool bad_ref = in.reference && !in.reference->scan.clean();
-  if (!t.scan.clean() || bad_ref)
-    for (auto& [n, v] : rec.metrics)
-      if (n.size() < 3 || n.compare(n.size() - 3, 3, "_px") != 0) v = nan;
-  rec.floor = floor;
-  rec.metrics.emplace_back("motion_explained", me.given);
-  rec.metrics.emplace_back("motion_explained_negated", me.negated);
-  rec.metrics.emplace_back("motion_explained_flip_y", me.flip_y);
-  rec.metrics.emplace_back("motion_explained_flip_x", me.flip_x);
-  rec.metrics.emplace_back("motion_nonfinite_px", double(motion_bad));
-  if (in.reference) {
-    rec.metrics.emplace_back("reference_nonfinite_px", double(in.reference->scan.nan + in.reference->scan.infinite));
-    rec.metrics.emplace_back("reference_negative_px", double(in.reference->scan.negative));
-  }
-  return rec;
-}
-
 // The journal's header: what the run is, and the content hash of every file it reads (its identity:
 // --resume continues only the same run).
 nlohmann::json journal_header(const Setup& s, const metrics::ColorManager& cm) {
@@ -678,25 +413,45 @@ nlohmann::json journal_header(const Setup& s, const metrics::ColorManager& cm) {
           {"shard", {0, 1}}};
 }
 
-// The run's plan: one variant a test, each measured against the one reference (if any).
+// The run's plan: one variant a test, read from its files, each measured against the one reference (if
+// any).
 RunPlan measure_plan(const Setup& s) {
   RunPlan plan;
   plan.spec = &s.spec;
   plan.frames = s.spec.frames;
   plan.measure = true;
-  for (const auto& v : s.spec.variants) {
+  for (size_t i = 0; i < s.spec.variants.size(); ++i) {
     RunPlan::Variant pv;
-    pv.spec = &v;
+    pv.spec = &s.spec.variants[i];
     pv.reference = s.p.reference ? 0 : -1;
+    pv.files = s.p.tests[i];
     plan.variants.push_back(pv);
   }
   if (s.p.reference) {
     RunPlan::Reference r;
     r.name = "reference";
+    r.files = s.p.reference;
     for (size_t i = 0; i < plan.variants.size(); ++i) r.variants.push_back(int(i));
     plan.references.push_back(r);
   }
   return plan;
+}
+
+// The frame loop's sources: every test's files, the reference's (one sequence or two halves), the
+// vectors' files or optical flow; frame k at k / fps seconds, called by its number in the files.
+LoopSources measure_sources(const Setup& s, const MeasureOptions& o, const metrics::ColorManager& cm,
+                            const metrics::FrameMetrics& frame_metrics) {
+  const Plan& p = s.p;
+  LoopSources src;
+  for (const auto& t : p.tests) src.variants.push_back(file_sequence(t, cm, metrics::kXyzD65Space));
+  if (p.reference)
+    src.references.push_back(file_reference(*p.reference, p.reference_b, cm, metrics::kXyzD65Space, &frame_metrics,
+                                            p.tests.size() > 1));
+  src.motion = p.motion ? file_motion(*p.motion, p.depth, p.convention, p.motion_channels)
+                        : estimated_motion(p.width, p.height);
+  src.clock = [numbers = p.numbers, fps = o.fps](int k) { return FrameClock{k / fps, false, numbers[size_t(k)]}; };
+  src.check_motion = true;
+  return src;
 }
 
 // The outputs, from the journal: frames.csv, summary.json with the motion check over the run and its
@@ -790,40 +545,26 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     return code;
   const Plan& p = s.p;
   const ExperimentSpec& spec = s.spec;
-  // ---- the first frame read while the files are hashed (journal_header): a new run (no --resume)
-  // starts at frame 0
-  const metrics::FrameMetrics measure(cm, spec.working_space, spec.metrics, spec.metric_options);
-  auto read = [&p, &cm, &measure](int k, std::shared_ptr<const Image> prev_forward) {
-    return std::async(std::launch::async, [&p, &cm, &measure, k, prev_forward] {
-      return read_inputs(p, size_t(k), cm, measure, prev_forward);
-    });
-  };
+  const metrics::FrameMetrics frame_metrics(cm, spec.working_space, spec.metrics, spec.metric_options);
   // The loop's working set in 2 MiB pages: at most about 280 bytes a pixel and 70 more for each test
   // (peak resident memory at 1920x1080: 570 MB with one test, whose reference's L*a*b* is not kept,
   // 796 MB with two), at most what one call takes.
   reserve_heap_in_huge_pages(
       std::min(size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size()), kMaxHugeReservation));
-  std::future<FrameInput> next;
-  if (!o.resume) next = read(0, nullptr);
 
   const fs::path out_dir(o.out_dir);
   fs::create_directories(out_dir);
   std::unique_ptr<Journal> journal;
-  try {
-    journal = std::make_unique<Journal>(out_dir, journal_header(s, cm), o.resume);
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
-
   const RunPlan plan = measure_plan(s);
-
-  try {
-    journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (const int code = run_guarded(
+          [&] {
+            journal = std::make_unique<Journal>(out_dir, journal_header(s, cm), o.resume);
+            journal->check_shape(int(plan.variants.size()), plan.frames, int(plan.references.size()));
+            return int(kExitOk);
+          },
+          log);
+      code != kExitOk)
+    return code;
   log << "measure: " << p.tests.size() << " test sequence(s)" << (p.reference ? " against a reference" : ", no reference")
       << ", frames " << p.numbers.front() << " to " << p.numbers.back() << " at " << p.width << "x" << p.height
       << "; motion " << s.motion_kind << " (" << s.motion_source << "); disocclusion: " << s.disocclusion << "\n";
@@ -837,26 +578,13 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     log << "note: no motion vectors given: flicker is measured along optical flow estimated from "
         << (p.reference ? "the reference" : "the first test") << ", marked \"motion\": \"estimated\"\n";
 
-  // ---- the frames this invocation does: from the first one the journal lacks (its predecessor is
-  // read again for the temporal state, not recorded again)
-  const int count = int(p.numbers.size());
-  int first_missing = count;
-  for (int k = 0; k < count && first_missing == count; ++k)
-    for (size_t i = 0; i < p.tests.size(); ++i)
-      if (!journal->has_frame(int(i), k)) first_missing = std::min(first_missing, k);
+  // ---- the frames the journal lacks (and the frame before each, for the temporal state), by the run's loop
+  const WorkSchedule work = schedule_work(plan, *journal, 0, plan.frames);
   if (o.resume) log << "resume: " << journal->frames().size() << " frame record(s) done\n";
-
   ImageWriter images(out_dir, plan, cm);
-  if (first_missing < count) {
-    const int start = std::max(0, first_missing - 1);
-    Progress progress(log, o.name, int(p.tests.size()) * (count - start));
-    MeasureLoop loop(s, o, measure, *journal, images, progress, log, first_missing);
-    if (!next.valid()) next = read(start, nullptr);  // (a new run's frame 0 is being read already)
-    for (int k = start; k < count; ++k) {
-      FrameInput in = next.get();
-      if (k + 1 < count) next = read(k + 1, in.forward);
-      loop.frame(k, in);
-    }
+  if (work.last_frame >= 0) {
+    FrameLoop loop(plan, measure_sources(s, o, cm, frame_metrics), &frame_metrics, log);
+    loop.run(work, {journal.get(), &images});
   }
   return write_measure_outputs(s, o, plan, *journal, images, cm, out_dir, log);
 }

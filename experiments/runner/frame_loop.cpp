@@ -1,234 +1,232 @@
 #include "experiments/runner/frame_loop.h"
-#include "core/util/strings.h"
 
-#include "core/render/sample_schedule.h"
-#include "core/render/surface_pass.h"
+#include "core/util/strings.h"
 #include "experiments/runner/progress.h"
-#include "metrics/frame_metrics.h"
+#include "metrics/motion_check.h"
 
 #include <algorithm>
-#include <cmath>
-#include <optional>
 #include <chrono>
+#include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace glintlab {
 
 namespace {
+
 using Clock = std::chrono::steady_clock;
+const double kNan = std::nan("");
+
+// A frame with NaN, Inf or negative pixels measures nothing: every metric but the pixel counts is NaN.
+void void_metrics(metrics::NamedValues& values) {
+  for (auto& [name, value] : values)
+    if (name.size() < 3 || name.compare(name.size() - 3, 3, "_px") != 0) value = kNan;
+}
+
+std::string defect_text(const metrics::PixelScan& s) {
+  return std::to_string(s.nan) + " NaN, " + std::to_string(s.infinite) + " Inf, " + std::to_string(s.negative) +
+         " negative pixels";
+}
+
+// Frame k's truths as the variants are measured against them.
+struct Truth {
+  SourceFrame frame;
+  std::optional<metrics::FrameMetrics::Reference> prepared;
+  metrics::NamedValues floor;
+};
+
 }  // namespace
 
 struct FrameLoop::Impl {
-  const core::VkContext& ctx;
   const RunPlan& plan;
-  const SceneData& data;
-  const ReferenceCache& cache;
-  const metrics::ColorManager& cm;
+  LoopSources sources;
+  const metrics::FrameMetrics* fm;  // null when the run does not measure
   std::ostream& log;
-  std::vector<RenderSetup> variants, references;
-  RenderSetup motion;
-  std::unique_ptr<metrics::FrameMetrics> frame_metrics;  // null when the run does not measure
-  std::vector<metrics::FlickerTracker> trackers;
-  std::vector<metrics::FlickerTracker> half_trackers;  // per reference: its half B along the motion against half A
+  std::vector<metrics::FlickerTracker> trackers;       // per variant
+  std::vector<metrics::FlickerTracker> half_trackers;  // per truth: its half B along the motion against half A
+  std::shared_ptr<const metrics::FlickerReference> check_before;  // the motion check's frame before
+  int check_before_k = -2;
 
-  Impl(const core::VkContext& c, const core::SceneGpu& scene, const RunPlan& p, const SceneData& d,
-       const metrics::ColorManager& cm, const ReferenceCache& rc, std::ostream& l)
-      : ctx(c), plan(p), data(d), cache(rc), cm(cm), log(l) {
-    const ExperimentSpec& spec = *plan.spec;
-    for (const auto& v : plan.variants)  // a frame source is read, not rendered: no graph
-      variants.push_back(v.files ? RenderSetup{}
-                                 : build_variant(ctx, scene, spec.width, spec.height, *v.spec, v.program));
-    if (plan.measure || spec.output.motion) motion = build_motion(ctx, scene, spec.width, spec.height);
-    if (plan.measure) {
-      for (const auto& r : plan.references)
-        references.push_back(r.files ? RenderSetup{}
-                                     : build_reference(ctx, scene, spec.width, spec.height, r.program,
-                                                       spec.reference.grid));
-      frame_metrics = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
-      trackers.resize(plan.variants.size());
-      half_trackers.resize(plan.references.size());
-    }
-  }
+  Impl(const RunPlan& p, LoopSources s, const metrics::FrameMetrics* f, std::ostream& l)
+      : plan(p), sources(std::move(s)), fm(f), log(l), trackers(p.variants.size()), half_trackers(p.references.size()) {}
+
+  Truth truth(int k, size_t r, SourceFrame f, const WorkSchedule& work, const FrameClock& clock,
+              const MotionFrame& motion, bool own_frame, const std::vector<RecordSink*>& sinks);
+  metrics::MotionExplained check_motion(int k, const std::shared_ptr<const metrics::FlickerReference>& base,
+                                        const Image& motion);
+  FrameRecord variant_record(int k, size_t i, const SourceFrame& f, const WorkSchedule& work, const FrameClock& clock,
+                             const std::vector<std::optional<Truth>>& truths, const MotionFrame& motion,
+                             const metrics::MotionExplained& me,
+                             std::shared_ptr<const metrics::FlickerReference> own);
 };
 
-FrameLoop::FrameLoop(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan& plan,
-                     const SceneData& data, const metrics::ColorManager& cm, const ReferenceCache& cache,
+FrameLoop::FrameLoop(const RunPlan& plan, LoopSources sources, const metrics::FrameMetrics* frame_metrics,
                      std::ostream& log)
-    : impl_(std::make_unique<Impl>(ctx, scene, plan, data, cm, cache, log)) {}
+    : impl_(std::make_unique<Impl>(plan, std::move(sources), frame_metrics, log)) {}
 
 FrameLoop::~FrameLoop() = default;
 
-std::vector<std::string> FrameLoop::pass_names() const {
-  std::vector<std::string> out;
-  for (const auto& v : impl_->variants)
-    for (const auto& n : v.graph ? v.graph->pass_names() : std::vector<std::string>{})
-      if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
-  return out;
+// Truth r at frame k: its record (with its noise floor where it has two halves), the metrics' view of it.
+Truth FrameLoop::Impl::truth(int k, size_t r, SourceFrame f, const WorkSchedule& work, const FrameClock& clock,
+                             const MotionFrame& motion, bool own_frame, const std::vector<RecordSink*>& sinks) {
+  const size_t kk = size_t(k);
+  Truth t;
+  ReferenceRecord rec;
+  rec.reference = int(r);
+  rec.name = plan.references[r].name;
+  rec.frame = k;
+  rec.image = f.image.get();
+  rec.cached = f.cached;
+  rec.rebuilt = f.rebuilt;
+  rec.wall_ms = f.wall_ms;
+  rec.gpu_ms = f.gpu_ms;
+  if (fm && f.half_a && f.half_b) {  // the noise floor: every metric of half B against half A, along the motion
+    if (k == 0 || clock.cut || !work.reference[r][kk - 1]) half_trackers[r].reset();
+    const metrics::FrameMetrics::Reference a = f.half_a_prepared ? *f.half_a_prepared : fm->prepare(f.half_a, false);
+    rec.halves_metrics = fm->measure(*f.half_b, a, motion.motion, half_trackers[r]);
+    t.floor = metrics::noise_floor(rec.halves_metrics);
+    rec.half_a = f.half_a.get();
+    rec.half_b = f.half_b.get();
+  }
+  if (own_frame)
+    for (RecordSink* s : sinks) s->reference(rec);
+  if (own_frame && !f.scan.clean())
+    log << "\nwarning: " << rec.name << " frame " << clock.number << f.where << ": " << defect_text(f.scan)
+        << ": every metric measured against it is NaN at that frame\n";
+  if (fm) t.prepared = f.prepared ? std::move(*f.prepared) : fm->prepare(f.image, plan.references[r].variants.size() > 1);
+  t.frame = std::move(f);
+  return t;
 }
 
-std::vector<std::string> FrameLoop::metric_names() const {
-  return impl_->frame_metrics ? impl_->frame_metrics->names() : std::vector<std::string>{};
+// How well the motion explains the base sequence's change since the frame before (NaN at its first frame).
+metrics::MotionExplained FrameLoop::Impl::check_motion(int k,
+                                                       const std::shared_ptr<const metrics::FlickerReference>& base,
+                                                       const Image& motion) {
+  metrics::MotionExplained me;
+  me.given = me.negated = me.flip_y = me.flip_x = kNan;
+  if (k > 0 && check_before && check_before_k == k - 1)
+    me = metrics::motion_explained(check_before->pq, base->pq, plan.spec->width, plan.spec->height, motion);
+  check_before = base;
+  check_before_k = k;
+  return me;
+}
+
+// The record of variant i at frame k: its metrics against its truth (or, without one, its own flicker),
+// the truth's noise floor, the motion check and the pixel counts.
+FrameRecord FrameLoop::Impl::variant_record(int k, size_t i, const SourceFrame& f, const WorkSchedule& work,
+                                            const FrameClock& clock, const std::vector<std::optional<Truth>>& truths,
+                                            const MotionFrame& motion, const metrics::MotionExplained& me,
+                                            std::shared_ptr<const metrics::FlickerReference> own) {
+  const size_t kk = size_t(k);
+  const RunPlan::Variant& pv = plan.variants[i];
+  FrameRecord rec;
+  rec.variant = int(i);
+  rec.name = pv.spec->name;
+  rec.frame = k;
+  rec.time_s = clock.time_s;
+  rec.sequence_start = k == 0 || clock.cut;
+  rec.spp = sources.variants[i]->samples_per_pixel();
+  rec.gpu_ms = f.gpu_ms;
+  rec.passes = f.passes;
+  rec.wall_ms = f.wall_ms;
+  rec.image = f.image.get();
+  rec.scan = f.scan;
+  if (!work.measure[i][kk]) return rec;
+  // The tracker compares with the previous frame: it restarts at a cut and where the previous frame
+  // was not measured.
+  if (clock.cut || k == 0 || !work.measure[i][kk - 1]) trackers[i].reset();
+  const Truth* truth = pv.reference >= 0 ? &*truths[size_t(pv.reference)] : nullptr;
+  if (truth) {
+    rec.reference_cached = truth->frame.cached;
+    rec.metrics = fm->measure(*f.image, *truth->prepared, motion.motion, trackers[i], &rec.metric_cost_ms);
+    rec.floor = truth->floor;
+  } else {  // no truth: the variant's own flicker
+    const auto t0 = Clock::now();
+    std::optional<metrics::FlickerFrame> fl = trackers[i].push(*f.image, std::move(own), motion.motion);
+    rec.metrics.emplace_back("flicker_contrast", fl ? fl->flicker_contrast : kNan);
+    rec.metrics.emplace_back("flicker_valid_px", fl ? double(fl->valid_px) : kNan);
+    rec.metrics.emplace_back("flicker_disoccluded_px", fl ? double(fl->disoccluded_px) : kNan);
+    rec.metric_cost_ms.emplace_back("flicker", ms_since(t0));
+  }
+  if (!f.scan.clean() || (truth && !truth->frame.scan.clean())) void_metrics(rec.metrics);
+  if (sources.check_motion) {
+    rec.metrics.emplace_back("motion_explained", me.given);
+    rec.metrics.emplace_back("motion_explained_negated", me.negated);
+    rec.metrics.emplace_back("motion_explained_flip_y", me.flip_y);
+    rec.metrics.emplace_back("motion_explained_flip_x", me.flip_x);
+    rec.metrics.emplace_back("motion_nonfinite_px", double(motion.nonfinite));
+  }
+  if (truth) {
+    const metrics::PixelScan& rs = truth->frame.scan;
+    rec.metrics.emplace_back("reference_nonfinite_px", double(rs.nan + rs.infinite));
+    rec.metrics.emplace_back("reference_negative_px", double(rs.negative));
+  }
+  return rec;
 }
 
 void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& sinks) {
   Impl& m = *impl_;
-  const ExperimentSpec& spec = *m.plan.spec;
-  const int w = spec.width, h = spec.height;
   int total = 0;
   for (const auto& v : work.render) total += int(std::count(v.begin(), v.end(), 1));
-  Progress progress(m.log, spec.name, total);
+  Progress progress(m.log, m.plan.spec->name, total);
   for (int k = 0; k <= work.last_frame; ++k) {
     const size_t kk = size_t(k);
-    const core::FrameCamera cam = spec.path.frame(k, w, h);
-    core::FrameInputs in;
-    in.frame = k;
-    in.uniforms = frame_uniforms(spec, m.data, k);
-    in.camera_cut = cam.cut;
+    const FrameClock clock = m.sources.clock(k);
     const bool own_frame = k >= work.frame_begin && k < work.frame_end;
 
-    // ---- motion vectors and references of frame k (shared by every variant)
-    Image motion;
-    std::vector<metrics::FrameMetrics::Reference> prepared(m.references.size());
-    std::vector<bool> ref_cached(m.references.size(), false);
-    std::vector<metrics::PixelScan> ref_scan(m.references.size());  // references are scanned too
-    std::vector<metrics::NamedValues> ref_floor(m.references.size());
+    // ---- the truths' frames, and the motion (estimated from the base sequence where it is not given:
+    // the first truth, else the first variant)
+    std::vector<std::optional<SourceFrame>> ref_frames(m.plan.references.size());
+    for (size_t r = 0; r < ref_frames.size(); ++r)
+      if (work.reference[r][kk]) ref_frames[r] = m.sources.references[r]->frame(k);
+    std::optional<SourceFrame> first_variant;
+    if (!m.plan.variants.empty() && work.render[0][kk] && ref_frames.empty())
+      first_variant = m.sources.variants[0]->frame(k);
+    MotionFrame motion;
     if (work.motion[kk]) {
-      in.samples = core::samples_for(spec.path, k, w, h, {glm::vec2(0.0f)});
-      motion = std::move(m.motion.graph->execute(in).images.at(m.motion.output));
+      std::shared_ptr<const Image> base;
+      if (m.sources.motion->needs_base())
+        base = !ref_frames.empty() && ref_frames[0] ? ref_frames[0]->image : first_variant ? first_variant->image : nullptr;
+      motion = m.sources.motion->frame(k, base);
       if (own_frame)
-        for (RecordSink* s : sinks) s->motion(k, motion);
+        for (RecordSink* s : sinks) s->motion(k, motion.motion);
+      if (own_frame && motion.nonfinite > 0)
+        m.log << "\nwarning: motion vectors of frame " << clock.number << " have " << motion.nonfinite
+              << " non-finite pixels (left out of the flicker means)\n";
     }
-    for (size_t r = 0; r < m.references.size(); ++r) {
-      if (!work.reference[r][kk]) continue;
-      ReferenceRecord rec;
-      rec.reference = int(r);
-      rec.name = m.plan.references[r].name;
-      rec.frame = k;
-      std::optional<Image> img;
-      if (const auto& files = m.plan.references[r].files) {  // read, not rendered
-        ColourFrame cf = read_colour_frame(*files, kk, m.cm, spec.working_space);
-        ref_scan[r] = cf.scan;
-        rec.wall_ms = cf.read_ms;
-        rec.gpu_ms = std::nan("");
-        img = std::move(cf.image);
-        rec.image = &*img;
-        if (own_frame)
-          for (RecordSink* s : sinks) s->reference(rec);
-        prepared[r] = m.frame_metrics->prepare(*img, m.plan.references[r].variants.size() > 1);
-        continue;
-      }
-      const std::string key = m.plan.reference_key(int(r), in.uniforms);
-      const RenderSetup& setup = m.references[r];
-      // The truth and, where it has them, its two halves: cached as three entries, rendered again
-      // unless all three load.
-      const std::string half_keys[2] = {key + "-half-a", key + "-half-b"};
-      std::optional<Image> halves[2];
-      bool corrupt = false;
-      img = m.cache.load(key, &corrupt);
-      for (int hh = 0; setup.halves && img && hh < 2; ++hh) {
-        halves[hh] = m.cache.load(half_keys[hh], &corrupt);
-        if (!halves[hh]) img.reset();
-      }
-      if (corrupt) {
-        m.log << "warning: corrupt reference cache entry " << m.cache.path_of(key) << " removed; re-rendering\n";
-        rec.rebuilt = true;
-      }
-      if (img) {
-        rec.cached = true;
-      } else {
-        in.samples = core::samples_for(spec.path, k, w, h, supersampling(spec.reference.grid, w, h, kReferencePatternSeed).offsets);
-        auto t0 = Clock::now();
-        core::FrameResult fr = setup.graph->execute(in);
-        rec.wall_ms = ms_since(t0);
-        rec.gpu_ms = fr.gpu_ms;
-        img = std::move(fr.images.at(setup.output));
-        m.cache.store(key, *img);
-        for (int hh = 0; setup.halves && hh < 2; ++hh) {
-          halves[hh] = std::move(fr.images.at(core::SurfacePassOptions().half_targets[hh]));
-          m.cache.store(half_keys[hh], *halves[hh]);
-        }
-      }
-      // The noise floor: every metric of half B against half A, along the same motion.
-      if (setup.halves) {
-        if (k == 0 || cam.cut || !work.reference[r][kk - 1]) m.half_trackers[r].reset();
-        rec.halves_metrics = m.frame_metrics->measure(*halves[1], m.frame_metrics->prepare(*halves[0], false), motion,
-                                                m.half_trackers[r]);
-        ref_floor[r] = metrics::noise_floor(rec.halves_metrics);
-        rec.half_a = &*halves[0];
-        rec.half_b = &*halves[1];
-      }
-      rec.image = &*img;
-      ref_cached[r] = rec.cached;
-      ref_scan[r] = metrics::scan_pixels(*img, 3);
-      if (own_frame)
-        for (RecordSink* s : sinks) s->reference(rec);
-      prepared[r] = m.frame_metrics->prepare(*img, m.plan.references[r].variants.size() > 1);
+
+    // ---- the truths: records, noise floors, the metrics' view of them
+    std::vector<std::optional<Truth>> truths(ref_frames.size());
+    for (size_t r = 0; r < ref_frames.size(); ++r)
+      if (ref_frames[r]) truths[r] = m.truth(k, r, std::move(*ref_frames[r]), work, clock, motion, own_frame, sinks);
+
+    // ---- the motion check on the base sequence's own change; without a truth, each variant's own view
+    std::shared_ptr<const metrics::FlickerReference> own0;
+    if (first_variant && m.fm) own0 = std::make_shared<const metrics::FlickerReference>(metrics::flicker_reference(*first_variant->image));
+    metrics::MotionExplained me;
+    if (m.sources.check_motion && work.motion[kk]) {
+      const auto base = !truths.empty() && truths[0] ? truths[0]->prepared->flicker : own0;
+      if (base) me = m.check_motion(k, base, motion.motion);
     }
-    for (size_t r = 0; r < m.references.size(); ++r)
-      if (work.reference[r][kk] && own_frame && !ref_scan[r].clean())
-        m.log << "\nwarning: " << m.plan.references[r].name << " frame " << k << ": " << ref_scan[r].nan << " NaN, "
-              << ref_scan[r].infinite << " Inf, " << ref_scan[r].negative
-              << " negative pixels: every metric of the variants measured against it is NaN at that frame\n";
 
     // ---- every variant that has work at frame k
     for (size_t i = 0; i < m.plan.variants.size(); ++i) {
       if (!work.render[i][kk]) continue;
       const RunPlan::Variant& pv = m.plan.variants[i];
-      const std::vector<glm::vec2> offsets = variant_offsets(*pv.spec, k);
-      in.samples = core::samples_for(spec.path, k, w, h, offsets);
-      in.jitter_px = offsets.size() == 1 ? offsets[0] : glm::vec2(0.0f);
-      auto t0 = Clock::now();
-      core::FrameResult fr;
-      std::optional<ColourFrame> read;
-      if (pv.files) {  // a frame source: its k-th frame, in the working space
-        read = read_colour_frame(*pv.files, kk, m.cm, spec.working_space);
-        fr.gpu_ms = std::nan("");
-      } else {
-        fr = m.variants[i].graph->execute(in);
-      }
-      FrameRecord rec;
-      rec.wall_ms = ms_since(t0);
-      rec.variant = int(i);
-      rec.name = pv.spec->name;
-      rec.frame = k;
-      rec.time_s = cam.time;
-      rec.sequence_start = k == 0 || cam.cut;
-      rec.spp = pv.files ? 0 : pv.spec->samples_per_pixel();
-      rec.gpu_ms = fr.gpu_ms;
-      rec.passes = fr.timings;
-      const Image& img = read ? read->image : fr.images.at(m.variants[i].output);
-      rec.image = &img;
-      rec.scan = read ? read->scan : metrics::scan_pixels(img, 3);
-      if (work.measure[i][kk]) {
-        // The tracker compares with the previous frame: it restarts at a cut
-        // and where the previous frame was not measured.
-        if (cam.cut || k == 0 || !work.measure[i][kk - 1]) m.trackers[i].reset();
-        rec.reference_cached = ref_cached[size_t(pv.reference)];
-        rec.metrics = m.frame_metrics->measure(img, prepared[size_t(pv.reference)], motion, m.trackers[i],
-                                         &rec.metric_cost_ms);
-        // A truth with NaN, Inf or negative pixels measures nothing: counted, and every metric NaN.
-        const metrics::PixelScan& rs = ref_scan[size_t(pv.reference)];
-        if (!rs.clean()) {
-          defects_ = true;
-          for (auto& [name, value] : rec.metrics)
-            if (name.size() < 3 || name.compare(name.size() - 3, 3, "_px") != 0) value = std::nan("");
-        }
-        rec.metrics.emplace_back("reference_nonfinite_px", double(rs.nan + rs.infinite));
-        rec.metrics.emplace_back("reference_negative_px", double(rs.negative));
-        rec.floor = ref_floor[size_t(pv.reference)];
-      }
+      const SourceFrame f = i == 0 && first_variant ? std::move(*first_variant) : m.sources.variants[i]->frame(k);
+      std::shared_ptr<const metrics::FlickerReference> own;
+      if (pv.reference < 0 && m.fm && work.measure[i][kk])
+        own = i == 0 && own0 ? own0 : std::make_shared<const metrics::FlickerReference>(metrics::flicker_reference(*f.image));
+      const FrameRecord rec = m.variant_record(k, i, f, work, clock, truths, motion, me, std::move(own));
       if (work.emit[i][kk]) {
-        if (!rec.scan.clean()) {
-          defects_ = true;
-          m.log << "\nwarning: " << pv.spec->name << " frame " << k << ": " << rec.scan.nan << " NaN, "
-                << rec.scan.infinite << " Inf, " << rec.scan.negative << " negative pixels\n";
-        }
+        if (!rec.scan.clean())
+          m.log << "\nwarning: " << pv.spec->name << " frame " << clock.number << ": " << defect_text(rec.scan) << "\n";
         for (RecordSink* s : sinks) s->frame(rec);
       }
       std::ostringstream detail;
-      detail << pv.spec->name << " frame " << k << (work.emit[i][kk] ? "" : " (replay)") << ", " << std::fixed
-             << std::setprecision(1) << rec.wall_ms << " ms";
+      detail << pv.spec->name << " frame " << clock.number << (work.emit[i][kk] ? "" : " (replay)") << ", "
+             << std::fixed << std::setprecision(1) << rec.wall_ms << " ms";
       progress.step(detail.str());
     }
   }

@@ -18,6 +18,8 @@
 #include "experiments/runner/schema.h"
 #include "experiments/runner/version.h"
 #include "experiments/runner/work_schedule.h"
+#include "experiments/sources/file_sources.h"
+#include "experiments/sources/rendered_sources.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
@@ -186,6 +188,30 @@ int size_reference(const RunOptions& opt, const ExperimentSpec& spec, std::ostre
 
 }  // namespace
 
+// The sources of a rendered run: each variant's frame graph (or its files), each truth (rendered or
+// cached, or read), the motion pass where the run measures or writes motion.
+static LoopSources rendered_sources(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan& plan,
+                             const metrics::ColorManager& cm, const ReferenceCache& cache, RenderedFrames& frames,
+                             const metrics::FrameMetrics* frame_metrics, std::ostream& log) {
+  const ExperimentSpec& spec = *plan.spec;
+  LoopSources s;
+  for (const auto& v : plan.variants)
+    s.variants.push_back(v.files ? file_sequence(*v.files, cm, spec.working_space)
+                                 : rendered_variant(ctx, scene, v, frames));
+  if (plan.measure || spec.output.motion) s.motion = rendered_motion(ctx, scene, frames);
+  for (size_t r = 0; plan.measure && r < plan.references.size(); ++r) {
+    const RunPlan::Reference& ref = plan.references[r];
+    s.references.push_back(ref.files ? file_reference(*ref.files, std::nullopt, cm, spec.working_space,
+                                                      frame_metrics, ref.variants.size() > 1)
+                                     : rendered_reference(ctx, scene, plan, int(r), cache, frames, log));
+  }
+  s.clock = [&spec](int k) {
+    const core::FrameCamera cam = spec.path.frame(k, spec.width, spec.height);
+    return FrameClock{cam.time, cam.cut, k};
+  };
+  return s;
+}
+
 // run_experiment, with further summary.json keys (the reference sizing's account).
 static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::json& extra) {
   // ---- the experiment and this invocation's share of it
@@ -318,7 +344,12 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
     const std::string cache_dir = opt.cache_dir.empty() ? results_path("cache/reference") : opt.cache_dir;
     ReferenceCache cache(cache_dir);
     core::set_glint_table_cache_dir(cache_dir);  // a glint model's data table, beside the truths
-    FrameLoop loop(ctx, scene, plan, data, cm, cache, log);
+    RenderedFrames frames(spec, data);
+    std::unique_ptr<metrics::FrameMetrics> frame_metrics;
+    if (plan.measure)
+      frame_metrics = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
+    FrameLoop loop(plan, rendered_sources(ctx, scene, plan, cm, cache, frames, frame_metrics.get(), log),
+                   frame_metrics.get(), log);
     loop.run(work, {journal.get(), &images});
   }
 

@@ -30,7 +30,10 @@ WorkSchedule schedule_work(const RunPlan& plan, const Journal& journal, int fram
         w.emit[v][size_t(k)] = 1;
         last = k;
       }
-    for (int k = 0; k <= last; ++k) w.render[v][size_t(k)] = 1;
+    // A rendered variant's frame depends on its history (TAA): every frame up to its last one is
+    // rendered. A frame read from files does not: only those measured or emitted are read.
+    const bool history = !plan.variants[v].files;
+    for (int k = 0; k <= last; ++k) w.render[v][size_t(k)] = history || w.emit[v][size_t(k)];
     w.last_frame = std::max(w.last_frame, last);
     if (plan.spec && plan.spec->output.motion)  // written for every frame the run records
       for (int k = frame_begin; k < frame_end; ++k)
@@ -39,9 +42,9 @@ WorkSchedule schedule_work(const RunPlan& plan, const Journal& journal, int fram
     for (int k = 0; k <= last; ++k) {
       const bool m = w.emit[v][size_t(k)] || (k + 1 < int(F) && w.emit[v][size_t(k) + 1]);
       if (!m) continue;
-      w.measure[v][size_t(k)] = 1;
+      w.measure[v][size_t(k)] = w.render[v][size_t(k)] = 1;
       w.motion[size_t(k)] = 1;
-      w.reference[size_t(plan.variants[v].reference)][size_t(k)] = 1;
+      if (plan.variants[v].reference >= 0) w.reference[size_t(plan.variants[v].reference)][size_t(k)] = 1;
     }
   }
   return w;

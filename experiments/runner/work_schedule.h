@@ -5,7 +5,8 @@
 // depend on every earlier frame, so
 //   emit    = its frames in this shard's range that the journal lacks;
 //   render  = every frame up to its last emitted one (TAA history is rebuilt
-//             exactly; reference frames are not needed for it);
+//             exactly; reference frames are not needed for it); a variant
+//             read from files has no history: only its measured frames;
 //   measure = the emitted frames and the frame before each (the flicker
 //             tracker compares a frame with its predecessor; it restarts where
 //             the measured frames have a gap).

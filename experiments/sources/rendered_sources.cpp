@@ -1,0 +1,161 @@
+#include "experiments/sources/rendered_sources.h"
+
+#include "core/render/sample_schedule.h"
+#include "core/render/surface_pass.h"
+#include "core/util/strings.h"
+#include "experiments/runner/variant_factory.h"
+#include "metrics/pixel_scan.h"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+namespace glintlab {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class RenderedVariant final : public ColourSource {
+ public:
+  RenderedVariant(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan::Variant& v,
+                  RenderedFrames& frames)
+      : v_(*v.spec), frames_(frames),
+        setup_(build_variant(ctx, scene, frames.spec().width, frames.spec().height, v_, v.program)) {}
+
+  SourceFrame frame(int k) override {
+    const ExperimentSpec& spec = frames_.spec();
+    core::FrameInputs in = frames_.inputs(k);
+    const std::vector<glm::vec2> offsets = variant_offsets(v_, k);
+    in.samples = core::samples_for(spec.path, k, spec.width, spec.height, offsets);
+    in.jitter_px = offsets.size() == 1 ? offsets[0] : glm::vec2(0.0f);
+    const auto t0 = Clock::now();
+    core::FrameResult fr = setup_.graph->execute(in);
+    SourceFrame f;
+    f.wall_ms = ms_since(t0);
+    f.gpu_ms = fr.gpu_ms;
+    f.passes = std::move(fr.timings);
+    f.image = std::make_shared<const Image>(std::move(fr.images.at(setup_.output)));
+    f.scan = metrics::scan_pixels(*f.image, 3);
+    return f;
+  }
+  int samples_per_pixel() const override { return v_.samples_per_pixel(); }
+
+ private:
+  const VariantSpec& v_;
+  RenderedFrames& frames_;
+  RenderSetup setup_;
+};
+
+// The truth and, where it has them, its two halves: cached as three entries, rendered again unless all
+// three load.
+class RenderedReference final : public ColourSource {
+ public:
+  RenderedReference(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan& plan, int r,
+                    const ReferenceCache& cache, RenderedFrames& frames, std::ostream& log)
+      : plan_(plan), r_(r), cache_(cache), frames_(frames), log_(log),
+        setup_(build_reference(ctx, scene, frames.spec().width, frames.spec().height,
+                               plan.references[size_t(r)].program, frames.spec().reference.grid)) {}
+
+  SourceFrame frame(int k) override {
+    const ExperimentSpec& spec = frames_.spec();
+    core::FrameInputs in = frames_.inputs(k);
+    const std::string key = plan_.reference_key(r_, in.uniforms);
+    const std::string half_keys[2] = {key + "-half-a", key + "-half-b"};
+    SourceFrame f;
+    std::optional<Image> img, halves[2];
+    bool corrupt = false;
+    img = cache_.load(key, &corrupt);
+    for (int h = 0; setup_.halves && img && h < 2; ++h) {
+      halves[h] = cache_.load(half_keys[h], &corrupt);
+      if (!halves[h]) img.reset();
+    }
+    if (corrupt) {
+      log_ << "warning: corrupt reference cache entry " << cache_.path_of(key) << " removed; re-rendering\n";
+      f.rebuilt = true;
+    }
+    if (img) {
+      f.cached = true;
+    } else {
+      in.samples = core::samples_for(
+          spec.path, k, spec.width, spec.height,
+          supersampling(spec.reference.grid, spec.width, spec.height, kReferencePatternSeed).offsets);
+      const auto t0 = Clock::now();
+      core::FrameResult fr = setup_.graph->execute(in);
+      f.wall_ms = ms_since(t0);
+      f.gpu_ms = fr.gpu_ms;
+      img = std::move(fr.images.at(setup_.output));
+      cache_.store(key, *img);
+      for (int h = 0; setup_.halves && h < 2; ++h) {
+        halves[h] = std::move(fr.images.at(core::SurfacePassOptions().half_targets[h]));
+        cache_.store(half_keys[h], *halves[h]);
+      }
+    }
+    if (setup_.halves) {
+      f.half_a = std::make_shared<const Image>(std::move(*halves[0]));
+      f.half_b = std::make_shared<const Image>(std::move(*halves[1]));
+    }
+    f.image = std::make_shared<const Image>(std::move(*img));
+    f.scan = metrics::scan_pixels(*f.image, 3);
+    return f;
+  }
+
+ private:
+  const RunPlan& plan_;
+  const int r_;
+  const ReferenceCache& cache_;
+  RenderedFrames& frames_;
+  std::ostream& log_;
+  RenderSetup setup_;
+};
+
+class RenderedMotion final : public MotionSource {
+ public:
+  RenderedMotion(const core::VkContext& ctx, const core::SceneGpu& scene, RenderedFrames& frames)
+      : frames_(frames), setup_(build_motion(ctx, scene, frames.spec().width, frames.spec().height)) {}
+
+  MotionFrame frame(int k, const std::shared_ptr<const Image>&) override {
+    const ExperimentSpec& spec = frames_.spec();
+    core::FrameInputs in = frames_.inputs(k);
+    in.samples = core::samples_for(spec.path, k, spec.width, spec.height, {glm::vec2(0.0f)});
+    MotionFrame m;
+    m.motion = std::move(setup_.graph->execute(in).images.at(setup_.output));
+    return m;
+  }
+
+ private:
+  RenderedFrames& frames_;
+  RenderSetup setup_;
+};
+
+}  // namespace
+
+const core::FrameInputs& RenderedFrames::inputs(int k) {
+  if (k != k_) {
+    const core::FrameCamera cam = spec_.path.frame(k, spec_.width, spec_.height);
+    in_ = core::FrameInputs{};
+    in_.frame = k;
+    in_.uniforms = frame_uniforms(spec_, data_, k);
+    in_.camera_cut = cam.cut;
+    k_ = k;
+  }
+  return in_;
+}
+
+std::unique_ptr<ColourSource> rendered_variant(const core::VkContext& ctx, const core::SceneGpu& scene,
+                                               const RunPlan::Variant& v, RenderedFrames& frames) {
+  return std::make_unique<RenderedVariant>(ctx, scene, v, frames);
+}
+
+std::unique_ptr<ColourSource> rendered_reference(const core::VkContext& ctx, const core::SceneGpu& scene,
+                                                 const RunPlan& plan, int r, const ReferenceCache& cache,
+                                                 RenderedFrames& frames, std::ostream& log) {
+  return std::make_unique<RenderedReference>(ctx, scene, plan, r, cache, frames, log);
+}
+
+std::unique_ptr<MotionSource> rendered_motion(const core::VkContext& ctx, const core::SceneGpu& scene,
+                                              RenderedFrames& frames) {
+  return std::make_unique<RenderedMotion>(ctx, scene, frames);
+}
+
+}  // namespace glintlab

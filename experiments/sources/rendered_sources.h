@@ -1,0 +1,46 @@
+// Rendered frame sources (experiments/sources/frame_source.h): a variant's
+// frame graph, a truth from the reference cache or rendered with its sample
+// grid (and its two halves), and the motion pass. They share one
+// RenderedFrames: the camera and uniforms of frame k, computed once a frame.
+#pragma once
+
+#include "core/render/scene_gpu.h"
+#include "core/vk/vk_context.h"
+#include "experiments/runner/plan.h"
+#include "experiments/runner/reference_cache.h"
+#include "experiments/sources/frame_source.h"
+#include "experiments/spec/experiment_spec.h"
+#include "experiments/spec/scene_setup.h"
+
+#include <memory>
+#include <ostream>
+
+namespace glintlab {
+
+// Frame k's inputs every rendered source starts from: frame, uniforms, camera cut (no samples).
+class RenderedFrames {
+ public:
+  RenderedFrames(const ExperimentSpec& spec, const SceneData& data) : spec_(spec), data_(data) {}
+  const core::FrameInputs& inputs(int k);
+  const ExperimentSpec& spec() const { return spec_; }
+
+ private:
+  const ExperimentSpec& spec_;
+  const SceneData& data_;
+  core::FrameInputs in_;
+  int k_ = -1;
+};
+
+// Variant `v` of the plan, rendered by its frame graph.
+std::unique_ptr<ColourSource> rendered_variant(const core::VkContext& ctx, const core::SceneGpu& scene,
+                                               const RunPlan::Variant& v, RenderedFrames& frames);
+// Reference `r` of the plan: loaded from `cache`, else rendered and stored (a corrupt entry is said on
+// `log`, removed and rendered again).
+std::unique_ptr<ColourSource> rendered_reference(const core::VkContext& ctx, const core::SceneGpu& scene,
+                                                 const RunPlan& plan, int r, const ReferenceCache& cache,
+                                                 RenderedFrames& frames, std::ostream& log);
+// Exact motion vectors and distances of the unjittered geometry.
+std::unique_ptr<MotionSource> rendered_motion(const core::VkContext& ctx, const core::SceneGpu& scene,
+                                              RenderedFrames& frames);
+
+}  // namespace glintlab
