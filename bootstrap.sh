@@ -6,8 +6,8 @@ PKGS=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools spirv-tools
   libglm-dev
-  libopenimageio-dev openimageio-tools libopenexr-dev libdeflate-dev  # EXR sequences' fast path (experiments/measure/)
-  libpng-dev  # sRGB PNGs read without OpenImageIO (experiments/measure/png_file.h)
+  libopenimageio-dev openimageio-tools libopenexr-dev libdeflate-dev  # EXR sequences' fast path (experiments/sources/)
+  libpng-dev  # sRGB PNGs read without OpenImageIO (experiments/sources/png_file.h)
   libopencolorio-dev opencolorio-tools
   libgtest-dev
   nlohmann-json3-dev libcli11-dev libxxhash-dev libopencv-video-dev ninja-build

@@ -11,7 +11,7 @@ namespace glintlab::core {
 
 namespace {
 
-// Built-in paths. experiments/paths/<name>.json hold the same text (a test checks that they agree).
+// Built-in paths. experiments/data/paths/<name>.json hold the same text (a test checks that they agree).
 // "static-close" and "orbit-close" use the thesis' render-comparison camera: distance 4 at 25°
 // elevation (Kajs sec. 6, fig. 6.7): (4 cos 25°, 4 sin 25°) = (3.6252, 1.6905).
 const std::map<std::string, const char*>& builtin_json() {

@@ -1,4 +1,4 @@
-// Scripted camera paths, loaded from JSON (experiments/paths/*.json) or built in.
+// Scripted camera paths, loaded from JSON (experiments/data/paths/*.json) or built in.
 //
 // Common keys:  "type": "keyframes" | "orbit" | "dolly" | "flyover" | "static"   (required)
 //               "fps": frames per second (required, (0, 1000])
@@ -57,7 +57,7 @@ class CameraPath {
   static CameraPath from_json(JsonReader& r);  // validates; calls r.finish(); throws ConfigError
   static CameraPath load(const std::string& file);
   static std::vector<std::string> builtin_names();
-  // The built-in paths; identical to experiments/paths/<name>.json. Throws std::invalid_argument.
+  // The built-in paths; identical to experiments/data/paths/<name>.json. Throws std::invalid_argument.
   static CameraPath builtin(const std::string& name);
 
   const std::string& type() const { return type_; }

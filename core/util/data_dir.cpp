@@ -13,7 +13,7 @@ namespace glintlab {
 namespace {
 
 // One file of each part a data folder must hold.
-constexpr const char* kRequired[] = {"shaders/passes/surface.vert", "experiments/regression.json",
+constexpr const char* kRequired[] = {"shaders/passes/surface.vert", "experiments/data/regression.json",
                                      "metrics/color/ocio/config.ocio"};
 
 // Whether `p` is `dir` or lies under it, compared as written (both absolute, without symbolic links:

@@ -2,7 +2,7 @@
 // material overrides). Every error names the file, the key path and what is
 // allowed; unknown keys are errors. Parsing itself is nlohmann::json's.
 //
-//   JsonReader r(j, "experiments/default.json");          // root object
+//   JsonReader r(j, "experiments/data/default.json");          // root object
 //   int w = r.get_int("width", 640, 1, 16384);             // optional with default
 //   std::string s = r.get_enum("scene", {"plane","dune"}); // required
 //   JsonReader cam = r.child("camera");                    // nested object

@@ -3,7 +3,7 @@
 // links about 260 shared libraries (its format plugins: ffmpeg, libheif, libraw, OpenVDB, ...), whose
 // loading and relocation is most of a process's start-up; commands that read no image through it
 // (`check`, `list`, `--help`, `compare` and `measure --no-report` of plain OpenEXR files, which the
-// OpenEXR core library reads: experiments/measure/exr_scanlines.h) never load them.
+// OpenEXR core library reads: experiments/sources/exr_scanlines.h) never load them.
 //
 // The library is found and loaded as core/util/plugin.h says. A library that cannot be loaded is an
 // IoError naming it and dlerror()'s reason. Each function has the
@@ -51,7 +51,7 @@ struct Api {
   // 8-bit PNG of already quantised values (img.channels of them a pixel) into `tmp`.
   void (*write_png)(const std::string& tmp, const std::string& path, int width, int height, int channels,
                     const unsigned char* values);
-  // Every part of a frame file, up to max_parts (experiments/measure/sequence.cpp read_frame_header):
+  // Every part of a frame file, up to max_parts (experiments/sources/sequence.cpp read_frame_header):
   // ConfigError when OpenImageIO cannot open it.
   std::vector<Part> (*frame_parts)(const std::string& path, int max_parts);
   // The named channels of a frame from the parts of size width x height into `out` (its channel k from

@@ -9,7 +9,7 @@ namespace glintlab {
 
 void add_run_commands(CLI::App& app, int& exit_code);      // render, run
 void add_compare_command(CLI::App& app, int& exit_code);   // compare (experiments/cli/compare.cpp)
-void add_measure_command(CLI::App& app, int& exit_code);   // measure (experiments/measure/)
+void add_measure_command(CLI::App& app, int& exit_code);   // measure (experiments/sources/)
 void add_list_command(CLI::App& app, int& exit_code);      // list
 void add_check_command(CLI::App& app, int& exit_code);     // check (experiments/cli/check.cpp)
 void add_report_command(CLI::App& app, int& exit_code);    // report (experiments/report/report.cpp)

@@ -17,7 +17,7 @@
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
 #include "experiments/cli/exit_codes.h"
-#include "experiments/measure/exr_scanlines.h"
+#include "experiments/sources/exr_scanlines.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/color/image_io.h"
 #include "metrics/color/measurement_space.h"

@@ -6,7 +6,7 @@
 #include "core/vk/vk_context.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
-#include "experiments/measure/motion_convention.h"
+#include "experiments/sources/motion_convention.h"
 #include "experiments/spec/experiment_spec.h"
 #include "metrics/metric_registry.h"
 

@@ -1,9 +1,9 @@
 // `glintlab measure`: the run's metrics for image sequences of any renderer
-// (experiments/measure/measure.h).
+// (experiments/runner/measure.h).
 #include "core/util/data_dir.h"
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
-#include "experiments/measure/measure.h"
+#include "experiments/runner/measure.h"
 
 #include <filesystem>
 #include <iostream>

@@ -2,7 +2,7 @@
 
 #include "core/util/content_hash.h"
 #include "core/vk/shader_compiler.h"
-#include "experiments/runner/variant_factory.h"
+#include "experiments/sources/variant_factory.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -6,7 +6,7 @@
 
 #include "core/material/program.h"
 #include "core/render/frame_uniforms.h"
-#include "experiments/measure/sequence.h"
+#include "experiments/sources/sequence.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"

@@ -8,13 +8,13 @@
 #include "core/util/json_check.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
-#include "experiments/measure/measure.h"
+#include "experiments/runner/measure.h"
 #include "experiments/report/report.h"
 #include "experiments/runner/frame_loop.h"
 #include "experiments/runner/journal.h"
 #include "experiments/runner/output_writers.h"
 #include "experiments/runner/plan.h"
-#include "experiments/runner/reference_cache.h"
+#include "experiments/sources/reference_cache.h"
 #include "experiments/runner/schema.h"
 #include "experiments/runner/version.h"
 #include "experiments/runner/work_schedule.h"
@@ -188,6 +188,50 @@ int size_reference(const RunOptions& opt, const ExperimentSpec& spec, std::ostre
 
 }  // namespace
 
+// An experiment whose every source is files: the measurement `glintlab measure` makes of its options.
+static int run_frames_only(const RunOptions& opt, const ExperimentSpec& spec, const std::string& file,
+                           std::ostream& log) {
+  MeasureOptions m;
+  m.file = file;
+  m.name = spec.name;
+  m.reference = spec.reference.frames;
+  m.reference_space = spec.reference.frames_space;
+  m.reference_b = spec.reference.frames_b;
+  for (const auto& v : spec.variants) m.tests.push_back({v.name, v.frames, v.frames_space});
+  m.out_dir = opt.out_dir;
+  m.motion = spec.frames_only.motion;
+  m.motion_from = spec.frames_only.motion_from;
+  m.motion_convention = spec.frames_only.motion_convention;
+  m.depth = spec.frames_only.depth;
+  m.metrics = spec.metrics;
+  m.first = spec.frames_only.first;
+  m.last = spec.frames_only.last;
+  if (opt.max_frames > 0) {
+    if (m.first == INT_MIN) {
+      log << "error: --frames N: a frames-only experiment takes its frames by number; set \"frame_range\" in "
+          << file << "\n";
+      return kExitBadInput;
+    }
+    m.last = std::min(m.last, m.first + opt.max_frames - 1);
+  }
+  m.fps = spec.frames_only.fps;
+  m.ocio_config = opt.ocio_config;
+  m.resume = opt.resume;
+  m.report = opt.report;
+  m.display = spec.output.display;
+  m.view = spec.output.view;
+  m.exposure = spec.output.exposure;
+  if (!opt.measure) {
+    log << "error: " << file << ": an experiment without \"scene\" has nothing to render; use `run`\n";
+    return kExitBadInput;
+  }
+  if (opt.shard_count > 1 || opt.width > 0) {
+    log << "error: " << file << ": --shard and --resolution do not apply to frames read from files\n";
+    return kExitBadInput;
+  }
+  return measure_sequences(m, log);
+}
+
 // The sources of a rendered run: each variant's frame graph (or its files), each truth (rendered or
 // cached, or read), the motion pass where the run measures or writes motion.
 static LoopSources rendered_sources(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan& plan,
@@ -197,13 +241,16 @@ static LoopSources rendered_sources(const core::VkContext& ctx, const core::Scen
   LoopSources s;
   for (const auto& v : plan.variants)
     s.variants.push_back(v.files ? file_sequence(*v.files, cm, spec.working_space)
-                                 : rendered_variant(ctx, scene, v, frames));
+                                 : rendered_variant(ctx, scene, *v.spec, v.program, frames));
   if (plan.measure || spec.output.motion) s.motion = rendered_motion(ctx, scene, frames);
   for (size_t r = 0; plan.measure && r < plan.references.size(); ++r) {
     const RunPlan::Reference& ref = plan.references[r];
     s.references.push_back(ref.files ? file_reference(*ref.files, std::nullopt, cm, spec.working_space,
                                                       frame_metrics, ref.variants.size() > 1)
-                                     : rendered_reference(ctx, scene, plan, int(r), cache, frames, log));
+                                     : rendered_reference(
+                                           ctx, scene, ref.program,
+                                           [&plan, r](const core::FrameUniforms& u) { return plan.reference_key(int(r), u); },
+                                           cache, frames, log));
   }
   s.clock = [&spec](int k) {
     const core::FrameCamera cam = spec.path.frame(k, spec.width, spec.height);
@@ -232,47 +279,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   if (opt.shard_count < 1 || opt.shard_index < 0 || opt.shard_index >= opt.shard_count)
     throw ConfigError("--shard: expected k/n with 1 <= k <= n");
   spec = effective_spec(source, file, overrides);
-  if (spec.frames_only.enabled) {  // every source is files: the measurement of `glintlab measure`
-    MeasureOptions m;
-    m.file = file;
-    m.name = spec.name;
-    m.reference = spec.reference.frames;
-    m.reference_space = spec.reference.frames_space;
-    m.reference_b = spec.reference.frames_b;
-    for (const auto& v : spec.variants) m.tests.push_back({v.name, v.frames, v.frames_space});
-    m.out_dir = opt.out_dir;
-    m.motion = spec.frames_only.motion;
-    m.motion_from = spec.frames_only.motion_from;
-    m.motion_convention = spec.frames_only.motion_convention;
-    m.depth = spec.frames_only.depth;
-    m.metrics = spec.metrics;
-    m.first = spec.frames_only.first;
-    m.last = spec.frames_only.last;
-    if (opt.max_frames > 0) {
-      if (m.first == INT_MIN) {
-        log << "error: --frames N: a frames-only experiment takes its frames by number; set \"frame_range\" in "
-            << file << "\n";
-        return kExitBadInput;
-      }
-      m.last = std::min(m.last, m.first + opt.max_frames - 1);
-    }
-    m.fps = spec.frames_only.fps;
-    m.ocio_config = opt.ocio_config;
-    m.resume = opt.resume;
-    m.report = opt.report;
-    m.display = spec.output.display;
-    m.view = spec.output.view;
-    m.exposure = spec.output.exposure;
-    if (!opt.measure) {
-      log << "error: " << file << ": an experiment without \"scene\" has nothing to render; use `run`\n";
-      return kExitBadInput;
-    }
-    if (opt.shard_count > 1 || opt.width > 0) {
-      log << "error: " << file << ": --shard and --resolution do not apply to frames read from files\n";
-      return kExitBadInput;
-    }
-    return measure_sequences(m, log);
-  }
+  if (spec.frames_only.enabled) return run_frames_only(opt, spec, file, log);  // every source is files
   const bool measured = opt.measure && spec.reference.enabled;
   if (opt.measure && !spec.reference.enabled)
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";

@@ -5,8 +5,8 @@
 // loop measures the current one.
 #pragma once
 
-#include "experiments/measure/motion_convention.h"
-#include "experiments/measure/sequence.h"
+#include "experiments/sources/motion_convention.h"
+#include "experiments/sources/sequence.h"
 #include "experiments/sources/frame_source.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/frame_metrics.h"

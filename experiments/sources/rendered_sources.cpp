@@ -3,7 +3,7 @@
 #include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
 #include "core/util/strings.h"
-#include "experiments/runner/variant_factory.h"
+#include "experiments/sources/variant_factory.h"
 #include "metrics/pixel_scan.h"
 
 #include <chrono>
@@ -18,10 +18,10 @@ using Clock = std::chrono::steady_clock;
 
 class RenderedVariant final : public ColourSource {
  public:
-  RenderedVariant(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan::Variant& v,
-                  RenderedFrames& frames)
-      : v_(*v.spec), frames_(frames),
-        setup_(build_variant(ctx, scene, frames.spec().width, frames.spec().height, v_, v.program)) {}
+  RenderedVariant(const core::VkContext& ctx, const core::SceneGpu& scene, const VariantSpec& v,
+                  const core::MaterialProgram& program, RenderedFrames& frames)
+      : v_(v), frames_(frames),
+        setup_(build_variant(ctx, scene, frames.spec().width, frames.spec().height, v_, program)) {}
 
   SourceFrame frame(int k) override {
     const ExperimentSpec& spec = frames_.spec();
@@ -51,16 +51,16 @@ class RenderedVariant final : public ColourSource {
 // three load.
 class RenderedReference final : public ColourSource {
  public:
-  RenderedReference(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan& plan, int r,
-                    const ReferenceCache& cache, RenderedFrames& frames, std::ostream& log)
-      : plan_(plan), r_(r), cache_(cache), frames_(frames), log_(log),
-        setup_(build_reference(ctx, scene, frames.spec().width, frames.spec().height,
-                               plan.references[size_t(r)].program, frames.spec().reference.grid)) {}
+  RenderedReference(const core::VkContext& ctx, const core::SceneGpu& scene, const core::MaterialProgram& program,
+                    ReferenceKey key, const ReferenceCache& cache, RenderedFrames& frames, std::ostream& log)
+      : key_(std::move(key)), cache_(cache), frames_(frames), log_(log),
+        setup_(build_reference(ctx, scene, frames.spec().width, frames.spec().height, program,
+                               frames.spec().reference.grid)) {}
 
   SourceFrame frame(int k) override {
     const ExperimentSpec& spec = frames_.spec();
     core::FrameInputs in = frames_.inputs(k);
-    const std::string key = plan_.reference_key(r_, in.uniforms);
+    const std::string key = key_(in.uniforms);
     const std::string half_keys[2] = {key + "-half-a", key + "-half-b"};
     SourceFrame f;
     std::optional<Image> img, halves[2];
@@ -101,8 +101,7 @@ class RenderedReference final : public ColourSource {
   }
 
  private:
-  const RunPlan& plan_;
-  const int r_;
+  const ReferenceKey key_;
   const ReferenceCache& cache_;
   RenderedFrames& frames_;
   std::ostream& log_;
@@ -143,14 +142,16 @@ const core::FrameInputs& RenderedFrames::inputs(int k) {
 }
 
 std::unique_ptr<ColourSource> rendered_variant(const core::VkContext& ctx, const core::SceneGpu& scene,
-                                               const RunPlan::Variant& v, RenderedFrames& frames) {
-  return std::make_unique<RenderedVariant>(ctx, scene, v, frames);
+                                               const VariantSpec& v, const core::MaterialProgram& program,
+                                               RenderedFrames& frames) {
+  return std::make_unique<RenderedVariant>(ctx, scene, v, program, frames);
 }
 
 std::unique_ptr<ColourSource> rendered_reference(const core::VkContext& ctx, const core::SceneGpu& scene,
-                                                 const RunPlan& plan, int r, const ReferenceCache& cache,
-                                                 RenderedFrames& frames, std::ostream& log) {
-  return std::make_unique<RenderedReference>(ctx, scene, plan, r, cache, frames, log);
+                                                 const core::MaterialProgram& program, ReferenceKey key,
+                                                 const ReferenceCache& cache, RenderedFrames& frames,
+                                                 std::ostream& log) {
+  return std::make_unique<RenderedReference>(ctx, scene, program, std::move(key), cache, frames, log);
 }
 
 std::unique_ptr<MotionSource> rendered_motion(const core::VkContext& ctx, const core::SceneGpu& scene,

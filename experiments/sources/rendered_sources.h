@@ -4,14 +4,15 @@
 // RenderedFrames: the camera and uniforms of frame k, computed once a frame.
 #pragma once
 
+#include "core/material/program.h"
 #include "core/render/scene_gpu.h"
 #include "core/vk/vk_context.h"
-#include "experiments/runner/plan.h"
-#include "experiments/runner/reference_cache.h"
 #include "experiments/sources/frame_source.h"
+#include "experiments/sources/reference_cache.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 
+#include <functional>
 #include <memory>
 #include <ostream>
 
@@ -31,14 +32,17 @@ class RenderedFrames {
   int k_ = -1;
 };
 
-// Variant `v` of the plan, rendered by its frame graph.
+// Variant `v`, shading `program`, rendered by its frame graph.
 std::unique_ptr<ColourSource> rendered_variant(const core::VkContext& ctx, const core::SceneGpu& scene,
-                                               const RunPlan::Variant& v, RenderedFrames& frames);
-// Reference `r` of the plan: loaded from `cache`, else rendered and stored (a corrupt entry is said on
-// `log`, removed and rendered again).
+                                               const VariantSpec& v, const core::MaterialProgram& program,
+                                               RenderedFrames& frames);
+// The truth of `program` with the run's sample grid: frame k loaded from `cache` by key(its uniforms),
+// else rendered and stored (a corrupt entry is said on `log`, removed and rendered again).
+using ReferenceKey = std::function<std::string(const core::FrameUniforms&)>;
 std::unique_ptr<ColourSource> rendered_reference(const core::VkContext& ctx, const core::SceneGpu& scene,
-                                                 const RunPlan& plan, int r, const ReferenceCache& cache,
-                                                 RenderedFrames& frames, std::ostream& log);
+                                                 const core::MaterialProgram& program, ReferenceKey key,
+                                                 const ReferenceCache& cache, RenderedFrames& frames,
+                                                 std::ostream& log);
 // Exact motion vectors and distances of the unjittered geometry.
 std::unique_ptr<MotionSource> rendered_motion(const core::VkContext& ctx, const core::SceneGpu& scene,
                                               RenderedFrames& frames);

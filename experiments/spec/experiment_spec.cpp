@@ -32,10 +32,10 @@ core::CameraPath load_path(JsonReader& r, const std::string& key, const std::str
   *name = s;
   auto builtins = core::CameraPath::builtin_names();
   if (std::find(builtins.begin(), builtins.end(), s) != builtins.end()) return core::CameraPath::builtin(s);
-  // Relative to the experiment file, else to the data folder's experiments/.
+  // Relative to the experiment file, else to the data folder's experiments/data/.
   std::error_code ec;  // an impossible name (too long, a loop) is just not a file here
   fs::path p = fs::path(file).parent_path() / s;
-  if (!fs::is_regular_file(p, ec)) p = fs::path(data_path("experiments")) / s;
+  if (!fs::is_regular_file(p, ec)) p = fs::path(data_path("experiments/data")) / s;
   if (fs::is_regular_file(p, ec)) {
     *path_file = p.string();
     return core::CameraPath::load(p.string());
@@ -43,7 +43,7 @@ core::CameraPath load_path(JsonReader& r, const std::string& key, const std::str
   std::string allowed;
   for (const auto& b : builtins) allowed += (allowed.empty() ? "" : ", ") + b;
   r.fail(key, "\"" + s + "\" is neither a built-in path (" + allowed + ") nor a file relative to " + file +
-                  " or " + data_path("experiments"));
+                  " or " + data_path("experiments/data"));
 }
 
 template <typename E, size_t N>
@@ -351,7 +351,7 @@ std::string variant_name_problem(const std::string& name) {
 std::vector<std::string> builtin_experiment_names() {
   std::vector<std::string> out;
   std::error_code ec;
-  const fs::path root(data_path("experiments"));
+  const fs::path root(data_path("experiments/data"));
   for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec)) {
     if (it->is_directory() && it->path().filename() == "paths") {  // camera paths, not experiments
@@ -370,7 +370,7 @@ std::vector<std::string> builtin_experiment_names() {
 std::string resolve_experiment_path(const std::string& name_or_path) {
   std::error_code ec;  // an impossible name (too long, a loop) is just not a file
   if (fs::is_regular_file(name_or_path, ec)) return name_or_path;
-  fs::path p = fs::path(data_path("experiments")) / (name_or_path + ".json");
+  fs::path p = fs::path(data_path("experiments/data")) / (name_or_path + ".json");
   if (fs::is_regular_file(p, ec)) return p.string();
   std::string list;
   for (const auto& n : builtin_experiment_names()) list += (list.empty() ? "" : ", ") + n;

@@ -61,7 +61,7 @@ struct VariantSpec {
   core::SandParams material;  // experiment material + this variant's overrides
   nlohmann::json material_json;  // the merged object (for hashing and the summary)
   nlohmann::json taa_json;       // the "taa" object as given (for the summary)
-  std::string frames;            // a frame source: the SEQ its frames are read from (experiments/measure/)
+  std::string frames;            // a frame source: the SEQ its frames are read from (experiments/sources/sequence.h)
   std::string frames_space;      // its OCIO space ("" = the files' tag, else scene_linear)
 
   int samples_per_pixel() const { return aa == AaMethod::Ssaa ? ssaa_grid * ssaa_grid : 1; }
@@ -70,7 +70,7 @@ struct VariantSpec {
 struct ReferenceSpec {
   bool enabled = true;
   int grid = 16;  // grid x grid samples (16 x 16 by default)
-  std::string frames;  // a frame source instead of a render: the SEQ (experiments/measure/)
+  std::string frames;  // a frame source instead of a render: the SEQ (experiments/sources/sequence.h)
   std::string frames_space;
   std::string frames_b;  // frames-only: the reference's second half ("frames" the first; measure --reference-b)
   // "floor": {METRIC: FRACTION, ...}: a truth good enough instead of a sample count. The run starts at

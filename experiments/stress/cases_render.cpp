@@ -12,7 +12,7 @@
 #include "core/material/program.h"
 #include "core/render/surface_pass.h"
 #include "core/util/image.h"
-#include "experiments/runner/variant_factory.h"
+#include "experiments/sources/variant_factory.h"
 #include "experiments/stress/render_util.h"
 #include "experiments/stress/stress_internal.h"
 

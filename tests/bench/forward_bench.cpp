@@ -46,9 +46,9 @@
 #include "core/scene/camera_path.h"
 #include "core/scene/mesh.h"
 #include "core/vk/vk_context.h"
-#include "experiments/measure/measure.h"
+#include "experiments/runner/measure.h"
 #include "metrics/vector_math.h"
-#include "experiments/runner/variant_factory.h"
+#include "experiments/sources/variant_factory.h"
 #include "metrics/color/image_io.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
@@ -573,7 +573,7 @@ int bench(int argc, char** argv) {
   }
 
   // ---- 2. the reference: cost per sample, and a geometry-bound case. The
-  // runner's way (supersampled passes, experiments/runner/variant_factory.h)
+  // runner's way (supersampled passes, experiments/sources/variant_factory.h)
   // beside one geometry pass per sample (what it did before), same samples count.
   if (section("reference")) {
     const core::MaterialProgram ref = core::sand_program(base, data.range, core::ProgramRole::Reference);

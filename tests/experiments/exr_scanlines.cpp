@@ -1,7 +1,7 @@
-// The fast way into OpenEXR scanline files (experiments/measure/exr_scanlines.h) gives the values
+// The fast way into OpenEXR scanline files (experiments/sources/exr_scanlines.h) gives the values
 // OpenImageIO gives, to the bit, for every layout it takes, and declines the others.
-#include "experiments/measure/exr_scanlines.h"
-#include "experiments/measure/sequence.h"
+#include "experiments/sources/exr_scanlines.h"
+#include "experiments/sources/sequence.h"
 
 #include "tests/support/temp_dir.h"
 #include <OpenImageIO/imageio.h>
@@ -147,7 +147,7 @@ TEST(ExrScanlines, DeclinesTiledFilesMissingChannelsAndDamage) {
 
 // A multi-layer file of a renderer none of us wrote (Cycles, tests/data/blender): its layers' channels.
 TEST(ExrScanlines, CyclesMultiLayerFrame) {
-  const fs::path path = fs::path(GLINTLAB_EXPERIMENT_DIR).parent_path() / "tests/data/blender/ref/frame_0001.exr";
+  const fs::path path = fs::path(GLINTLAB_SOURCE_DIR) / "tests/data/blender/ref/frame_0001.exr";
   const FrameHeader h = read_frame_header(path.string());
   std::vector<std::string> names;
   for (const auto& c : h.channels)

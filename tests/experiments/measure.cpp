@@ -4,9 +4,9 @@
 // no reference, resume, and bad input.
 #include "core/util/content_hash.h"
 #include "experiments/cli/check.h"
-#include "experiments/measure/measure.h"
-#include "experiments/measure/motion_convention.h"
-#include "experiments/measure/sequence.h"
+#include "experiments/runner/measure.h"
+#include "experiments/sources/motion_convention.h"
+#include "experiments/sources/sequence.h"
 #include "experiments/runner/runner.h"
 #include "metrics/color/image_io.h"
 

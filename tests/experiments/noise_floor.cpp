@@ -48,7 +48,7 @@ void run(const json& e, const fs::path& dir, const std::string& name) {
 // truth measured against the second, and against itself, along the run's motion.
 void check_floor(const std::string& experiment, int width, int height, int frames) {
   const test::TempDir tmp("noise_floor_" + experiment);
-  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / (experiment + ".json"));
+  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "data" / (experiment + ".json"));
   e["resolution"] = {width, height};
   e["frames"] = frames;
   e["variants"] = json::array({e["variants"][0]});  // no-aa
@@ -132,7 +132,7 @@ TEST(NoiseFloor, TheFloorPredictsTheTruthAgainstFourTimesItsSamplesOnTheOrbit) {
 // of the smallest variant value, each step recorded; the run uses the grid that met it.
 TEST(NoiseFloor, AFloorTargetSizesTheTruth) {
   const test::TempDir tmp("noise_floor_target");
-  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "default.json");
+  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "data" / "default.json");
   e["resolution"] = {160, 90};
   e["frames"] = 2;
   e["variants"] = json::array({e["variants"][0]});  // no-aa
@@ -163,7 +163,7 @@ TEST(NoiseFloor, AFloorTargetSizesTheTruth) {
 
 TEST(NoiseFloor, AFloorTargetOfAMetricWithoutFloorOrNotMeasuredIsExitCode2) {
   const test::TempDir tmp("noise_floor_target_bad");
-  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "default.json");
+  json e = read_json(fs::path(GLINTLAB_SOURCE_DIR) / "experiments" / "data" / "default.json");
   e["frames"] = 1;
   auto expect_2 = [&](const json& reference, const std::string& words) {
     e["reference"] = reference;

@@ -1,8 +1,8 @@
-// The fast way into PNG files (experiments/measure/png_file.h) gives the image, colour-space tag
+// The fast way into PNG files (experiments/sources/png_file.h) gives the image, colour-space tag
 // and channel count OpenImageIO gives, to the bit, for every colour type and depth it takes, and
 // declines PNGs that carry a gamma, chromaticities or an ICC profile, and damaged files.
-#include "experiments/measure/exr_scanlines.h"
-#include "experiments/measure/png_file.h"
+#include "experiments/sources/exr_scanlines.h"
+#include "experiments/sources/png_file.h"
 #include "metrics/color/image_io.h"
 
 #include "tests/support/temp_dir.h"

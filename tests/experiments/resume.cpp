@@ -2,7 +2,7 @@
 // every (variant, frame) row exactly once and the metrics of an uninterrupted
 // run; shards joined by merge give the same; concurrent writers of the
 // reference cache never corrupt it.
-#include "experiments/runner/reference_cache.h"
+#include "experiments/sources/reference_cache.h"
 #include "experiments/runner/runner.h"
 
 #include "tests/support/temp_dir.h"

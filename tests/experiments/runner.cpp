@@ -1,7 +1,7 @@
 // `glintlab run` end to end on lavapipe (validation on): every metric for
 // every frame and variant in frames.csv, the summary, the reference cache
 // (reuse, corruption detected and rebuilt), and bad input.
-#include "experiments/runner/reference_cache.h"
+#include "experiments/sources/reference_cache.h"
 #include "experiments/runner/runner.h"
 #include "metrics/color/image_io.h"
 

@@ -24,7 +24,7 @@ using nlohmann::json;
 
 namespace {
 
-const char* kFile = "experiments/under-test.json";
+const char* kFile = "experiments/data/under-test.json";
 
 // The smallest valid experiment: everything else defaulted.
 json minimal() {
@@ -307,7 +307,7 @@ TEST(ExperimentSpec, LoadErrorsNameTheLoadedFile) {
 }
 
 // Keeps the shipped experiments valid: every *.json under experiments/ (recursively; camera paths
-// in experiments/paths/ are not experiments) must load.
+// in experiments/data/paths/ are not experiments) must load.
 TEST(ExperimentSpec, EveryShippedExperimentLoads) {
   const fs::path root(GLINTLAB_EXPERIMENT_DIR);
   std::vector<fs::path> files;

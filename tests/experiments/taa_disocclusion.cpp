@@ -14,7 +14,7 @@
 #include "core/render/surface_pass.h"
 #include "core/render/taa_pass.h"
 #include "experiments/runner/runner.h"
-#include "experiments/runner/variant_factory.h"
+#include "experiments/sources/variant_factory.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "experiments/stress/render_util.h"

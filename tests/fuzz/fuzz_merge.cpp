@@ -13,7 +13,7 @@
 
 #include "core/util/content_hash.h"
 #include "experiments/runner/runner.h"
-#include "experiments/measure/sequence.h"
+#include "experiments/sources/sequence.h"
 #include "tests/fuzz/fuzz_common.h"
 
 #include <nlohmann/json.hpp>

@@ -73,8 +73,8 @@ done
 
 files=$(dpkg-deb -c "$deb" | awk '{print $NF}')
 for f in ./usr/bin/glintlab ./usr/share/glintlab/shaders/passes/surface.vert ./usr/share/glintlab/shaders/tests/stress_math.comp \
-  ./usr/share/glintlab/experiments/regression.json ./usr/share/glintlab/experiments/paths/orbit-close.json \
-  ./usr/share/glintlab/experiments/thesis/fig6-7-hdri-match.json \
+  ./usr/share/glintlab/experiments/data/regression.json ./usr/share/glintlab/experiments/data/paths/orbit-close.json \
+  ./usr/share/glintlab/experiments/data/thesis/fig6-7-hdri-match.json \
   ./usr/share/glintlab/experiments/report/glintlab_report.py ./usr/share/glintlab/experiments/tune/glintlab_tune.py \
   ./usr/share/glintlab/metrics/color/ocio/config.ocio ./usr/lib/python3/dist-packages/glintlab/__init__.py \
   ./usr/lib/glintlab/libglintlab_oiio.so ./usr/lib/glintlab/libglintlab_flow.so; do

@@ -94,7 +94,7 @@ def read_image(path, layer=None):
 
 def read_sequence(pattern, layer=None):
     """The frames of a SEQ (a folder of numbered frames, a pattern with %04d or ####, optionally
-    :LAYER; experiments/measure/sequence.h) as float32 T x H x W x 3, in frame-number order."""
+    :LAYER; experiments/sources/sequence.h) as float32 T x H x W x 3, in frame-number order."""
     frames, _numbers = _core.read_sequence(os.fspath(pattern), layer or "")
     return frames
 

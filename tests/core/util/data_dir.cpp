@@ -67,7 +67,7 @@ TEST(DataDir, AnIncompleteFolderIsNamedWithTheVariable) {
 
   // Each part is required: the first one missing is named.
   const fs::path share = dir / "share" / "glintlab";
-  for (const char* f : {"shaders/passes/surface.vert", "experiments/regression.json", "metrics/color/ocio/config.ocio"}) {
+  for (const char* f : {"shaders/passes/surface.vert", "experiments/data/regression.json", "metrics/color/ocio/config.ocio"}) {
     EXPECT_NE(data_dir_problem(d).find(std::string("has no ") + f), std::string::npos) << data_dir_problem(d);
     fs::create_directories((share / f).parent_path());
     std::ofstream(share / f) << "x";

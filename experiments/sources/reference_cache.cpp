@@ -1,4 +1,4 @@
-#include "experiments/runner/reference_cache.h"
+#include "experiments/sources/reference_cache.h"
 
 #include "core/util/atomic_file.h"
 #include "core/util/content_hash.h"

@@ -18,7 +18,7 @@
 
 #include "core/util/image.h"
 #include "core/util/named_enum.h"
-#include "experiments/measure/sequence.h"
+#include "experiments/sources/sequence.h"
 
 #include <optional>
 #include <string>

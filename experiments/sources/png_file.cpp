@@ -1,4 +1,4 @@
-#include "experiments/measure/png_file.h"
+#include "experiments/sources/png_file.h"
 
 #include "metrics/color/image_io.h"
 

@@ -24,7 +24,7 @@ constexpr double kMinFps = 1e-3, kMaxFps = 1000;  // --fps: one frame in 1000 s 
 
 struct MeasureSource {
   std::string name;  // the variant name ("" = from the sequence's path)
-  std::string seq;   // SEQ (experiments/measure/sequence.h)
+  std::string seq;   // SEQ (experiments/sources/sequence.h)
   std::string space;  // its OCIO space ("" = MeasureOptions::space)
 };
 

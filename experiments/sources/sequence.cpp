@@ -1,9 +1,9 @@
-#include "experiments/measure/sequence.h"
+#include "experiments/sources/sequence.h"
 
 #include "core/util/content_hash.h"
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
-#include "experiments/measure/exr_scanlines.h"
+#include "experiments/sources/exr_scanlines.h"
 #include "metrics/color/measurement_space.h"
 
 #include "core/util/oiio_plugin.h"

@@ -1,4 +1,4 @@
-#include "experiments/measure/motion_convention.h"
+#include "experiments/sources/motion_convention.h"
 
 #include "core/util/json_check.h"
 #include "metrics/parallel.h"

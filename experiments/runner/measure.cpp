@@ -1,4 +1,4 @@
-#include "experiments/measure/measure.h"
+#include "experiments/runner/measure.h"
 #include "core/util/strings.h"
 
 #include "core/util/allocator.h"
@@ -6,8 +6,8 @@
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
 #include "experiments/cli/exit_codes.h"
-#include "experiments/measure/motion_convention.h"
-#include "experiments/measure/sequence.h"
+#include "experiments/sources/motion_convention.h"
+#include "experiments/sources/sequence.h"
 #include "experiments/runner/frame_loop.h"
 #include "experiments/runner/journal.h"
 #include "experiments/runner/output_writers.h"

@@ -1,5 +1,5 @@
-#include "experiments/measure/exr_scanlines.h"
-#include "experiments/measure/png_file.h"
+#include "experiments/sources/exr_scanlines.h"
+#include "experiments/sources/png_file.h"
 
 #include "metrics/color/image_io.h"
 

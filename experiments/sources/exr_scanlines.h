@@ -45,7 +45,7 @@ bool read_simple_exr_header(const std::string& path, SimpleExrHeader* header);
 
 // metrics::read_image (metrics/color/image_io.h), the same image, colour-space tag, channel count and
 // errors, with a plain OpenEXR file whose pixels read_exr_scanlines reads, and an sRGB PNG
-// (experiments/measure/png_file.h), taken without OpenImageIO.
+// (experiments/sources/png_file.h), taken without OpenImageIO.
 Image read_image_file(const std::string& path, std::string* colorspace_tag = nullptr, int* file_channels = nullptr);
 
 }  // namespace glintlab

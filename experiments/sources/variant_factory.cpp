@@ -1,4 +1,4 @@
-#include "experiments/runner/variant_factory.h"
+#include "experiments/sources/variant_factory.h"
 
 #include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
