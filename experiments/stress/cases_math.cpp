@@ -1,5 +1,5 @@
 // Stress cases of the shared shader helpers and the sand's scalar terms:
-// shaders/tests/stress_math.comp against the fp64 twins (core/material/fp64)
+// shaders/tests/stress_math.comp against the fp64 twins (core/testkit)
 // and core::sand_sigmoid (the stable sigmoid in double) on extreme arguments.
 // err = |gpu - fp64| / max(|fp64|, floor) with the floor each case states.
 //
@@ -7,9 +7,9 @@
 // of one record's outputs against the fp64 twin, the counters that must stay
 // 0 and the bound; run_math_case makes the records, runs the shader once and
 // checks them all.
-#include "core/material/fp64/glint_fp64.h"
-#include "core/material/fp64/sand_fp64.h"
 #include "core/material/sand_material.h"
+#include "core/testkit/glint_fp64.h"
+#include "core/testkit/sand_fp64.h"
 #include "core/vk/compute_harness.h"
 #include "experiments/stress/stress_internal.h"
 
