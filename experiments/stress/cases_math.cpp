@@ -172,7 +172,8 @@ std::vector<Record> log_pow_specials() {
   return recs;
 }
 
-std::vector<MathRow> math_rows() {
+// In the fast subset: the sand's sigmoid and the vector helpers of shaders/common/.
+std::vector<MathRow> fast_helper_rows() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<MathRow> rows;
   // ---- sigmoid of eq. 4.37 (shaders/sand/transition.glsl) and stable_logistic
@@ -253,6 +254,12 @@ std::vector<MathRow> math_rows() {
          vec3 want = fallback ? vec3(0, 0, 1) : v / glm::length(v / m) / m;
          for (int k = 0; k < 3; ++k) t.err.add(g[k], want[k], 1.0, "v = " + str3(v));
        }});
+  return rows;
+}
+
+// In the fast subset: Oren-Nayar, the grain cells' keys and the porosity of shaders/sand/.
+std::vector<MathRow> fast_sand_rows() {
+  std::vector<MathRow> rows;
   // ---- Oren-Nayar (sand/oren_nayar.glsl) near 0 and 90 degrees
   rows.push_back(
       {"math.oren-nayar-0-90deg", true, 47, 1e-3,
@@ -339,6 +346,12 @@ std::vector<MathRow> math_rows() {
          t.err.add(o[0], want, 1e-30, "P " + fmt(P) + " d " + fmt(d));
          t.err.add(o[1], ref::rho_n_intensity(want), 1e-30, "rho_n^intensity P " + fmt(P) + " d " + fmt(d));
        }});
+  return rows;
+}
+
+// Only in the full run: transmission, the glint gate, safe_log1p and safe_pow, micro normals.
+std::vector<MathRow> full_run_rows() {
+  std::vector<MathRow> rows;
   // ---- transmission t (sand/transmission.glsl), T = 1, R_t in {0, 1}
   rows.push_back(
       {"math.transmission-T1-Rt01", false, 61, 1e-3,
@@ -430,6 +443,14 @@ std::vector<MathRow> math_rows() {
          for (int k = 0; k < 3; ++k) t.err.add(o[k], m[k], 1.0, "xi (" + fmt(rec[1]) + ", " + fmt(rec[2]) + ")");
        },
        {"skipped (margin <= 1e-4)"}});
+  return rows;
+}
+
+// Every math case, in the order run_stress runs them.
+std::vector<MathRow> math_rows() {
+  std::vector<MathRow> rows;
+  for (auto* group : {fast_helper_rows, fast_sand_rows, full_run_rows})
+    for (MathRow& row : group()) rows.push_back(std::move(row));
   return rows;
 }
 
