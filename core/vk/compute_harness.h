@@ -1,5 +1,7 @@
-// Evaluates a compute shader on an array of inputs: the GPU half of the
-// shader-vs-fp64 tests and of numerical probes. Binding contract:
+// Evaluates a compute shader on an array of inputs. The renderer computes the
+// glint models' tables with it (core/material/glint_table.cpp); it is also the
+// GPU half of the shader-vs-fp64 tests, `glintlab stress` and `glintlab
+// glint-test`. Binding contract:
 //   layout(std430, set = 0, binding = 0) readonly buffer Inputs  { float inputs[];  };
 //   layout(std430, set = 0, binding = 1) writeonly buffer Outputs { float outputs[]; };
 //   layout(push_constant) uniform Push { uint count; };

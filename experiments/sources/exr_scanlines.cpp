@@ -162,144 +162,216 @@ struct Wanted {
   exr_pixel_type_t type = EXR_PIXEL_HALF;
 };
 
-}  // namespace
+// Whether this host is little-endian (the file's byte order): only such hosts take this path.
+bool little_endian_host() {
+  const std::uint16_t one = 1;
+  std::uint8_t b;
+  std::memcpy(&b, &one, 1);
+  return b == 1;
+}
 
-bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out) {
-  static_assert(sizeof(Imath::half) == 2, "half is two bytes");
-  {  // only little-endian hosts (the file's byte order) take this path
-    const std::uint16_t one = 1;
-    std::uint8_t b;
-    std::memcpy(&b, &one, 1);
-    if (b != 1) return false;
-  }
+// Opens the regular file at `path` for reading its header and chunks; its size bounds every chunk.
+bool open_exr(const std::string& path, Context& ctx, std::uint64_t& file_size) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
-  const std::uint64_t file_size = std::uint64_t(st.st_size);  // no chunk may claim more
+  file_size = std::uint64_t(st.st_size);
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = quiet;
-  Context ctx;
-  if (exr_start_read(&ctx.c, path.c_str(), &init) != EXR_ERR_SUCCESS) return false;
-  int parts = 0;
-  if (exr_get_count(ctx.c, &parts) != EXR_ERR_SUCCESS) return false;
+  return exr_start_read(&ctx.c, path.c_str(), &init) == EXR_ERR_SUCCESS;
+}
 
-  // Which part gives which channel: as OpenImageIO's path, the first part of the image's size that has it.
-  std::vector<std::vector<Wanted>> plan(static_cast<size_t>(parts));
+// Which part gives which channel (plan[p]: part p's), as OpenImageIO's path: the first part of the
+// image's size that has it. False where a channel is missing or subsampled, or neither half nor float.
+bool plan_channels(exr_const_context_t c, int parts, const std::vector<std::string>& channels, const Image& out,
+                   std::vector<std::vector<Wanted>>& plan) {
+  plan.assign(static_cast<size_t>(parts), {});
   std::vector<bool> found(channels.size(), false);
   for (int p = 0; p < parts; ++p) {
     exr_attr_box2i_t dw;
     const exr_attr_chlist_t* list = nullptr;
-    if (exr_get_data_window(ctx.c, p, &dw) != EXR_ERR_SUCCESS || exr_get_channels(ctx.c, p, &list) != EXR_ERR_SUCCESS)
+    if (exr_get_data_window(c, p, &dw) != EXR_ERR_SUCCESS || exr_get_channels(c, p, &list) != EXR_ERR_SUCCESS)
       return false;
     if (std::int64_t(dw.max.x) - dw.min.x + 1 != out.width || std::int64_t(dw.max.y) - dw.min.y + 1 != out.height)
       continue;
     for (size_t k = 0; k < channels.size(); ++k)
-      for (int c = 0; c < list->num_channels && !found[k]; ++c) {
-        const exr_attr_chlist_entry_t& e = list->entries[c];
+      for (int ch = 0; ch < list->num_channels && !found[k]; ++ch) {
+        const exr_attr_chlist_entry_t& e = list->entries[ch];
         if (channels[k].size() != size_t(e.name.length) ||
             std::memcmp(channels[k].data(), e.name.str, channels[k].size()) != 0)
           continue;
         if (e.x_sampling != 1 || e.y_sampling != 1 || (e.pixel_type != EXR_PIXEL_HALF && e.pixel_type != EXR_PIXEL_FLOAT))
           return false;
-        plan[size_t(p)].push_back({c, k, e.pixel_type});
+        plan[size_t(p)].push_back({ch, k, e.pixel_type});
         found[k] = true;
       }
   }
   for (bool f : found)
     if (!f) return false;  // OpenImageIO's path names the missing channel
+  return true;
+}
+
+// How one part stores its lines.
+struct PartLayout {
+  exr_compression_t comp = EXR_COMPRESSION_NONE;
+  exr_attr_box2i_t dw{};
+  int32_t lines = 0;           // per chunk
+  std::vector<size_t> offset;  // where channel c's samples start in one uncompressed line
+  size_t line_bytes = 0;       // one uncompressed line: each channel's samples in turn, in the list's order
+};
+
+// The layout of part p, w pixels wide; false unless it is scanlines, uncompressed or ZIP / ZIPS.
+bool read_part_layout(exr_const_context_t c, int p, size_t w, PartLayout& part) {
+  exr_storage_t storage;
+  const exr_attr_chlist_t* list = nullptr;
+  if (exr_get_storage(c, p, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE ||
+      exr_get_compression(c, p, &part.comp) != EXR_ERR_SUCCESS ||
+      (part.comp != EXR_COMPRESSION_NONE && part.comp != EXR_COMPRESSION_ZIPS && part.comp != EXR_COMPRESSION_ZIP) ||
+      exr_get_data_window(c, p, &part.dw) != EXR_ERR_SUCCESS || exr_get_channels(c, p, &list) != EXR_ERR_SUCCESS ||
+      exr_get_scanlines_per_chunk(c, p, &part.lines) != EXR_ERR_SUCCESS || part.lines <= 0)
+    return false;
+  part.offset.assign(size_t(list->num_channels) + 1, 0);
+  for (int ch = 0; ch < list->num_channels; ++ch)
+    part.offset[size_t(ch) + 1] = part.offset[size_t(ch)] + w * (list->entries[ch].pixel_type == EXR_PIXEL_HALF ? 2 : 4);
+  part.line_bytes = part.offset.back();
+  return true;
+}
+
+// How one part's lines become the image's pixels: the transposing copy where three or four channels
+// of one type go into an RGBA image (kFloat, kHalf), else one channel at a time (kNo).
+enum class Rgba { kNo, kFloat, kHalf };
+struct LineCopy {
+  const std::vector<Wanted>& want;    // the channels the part gives
+  const std::vector<size_t>& offset;  // of PartLayout
+  size_t named, w, nc;                // the channels named; the image's width and channels
+  Rgba rgba = Rgba::kNo;
+  std::vector<std::uint8_t> ones;  // a line of 1.0 in the part's type: the channels after the named ones
+};
+
+// The copy of a part's lines, for the transposing copy where the CPU has it.
+LineCopy line_copy(const std::vector<Wanted>& want, const PartLayout& part, size_t named, size_t w, size_t nc) {
+  LineCopy copy{want, part.offset, named, w, nc};
+#if defined(__x86_64__)
+  static const bool f16c = cpu_has_f16c();
+  bool one_type = nc == 4 && want.size() >= 3;
+  for (const Wanted& x : want) one_type = one_type && x.type == want[0].type;
+  if (one_type) copy.rgba = want[0].type == EXR_PIXEL_FLOAT ? Rgba::kFloat : f16c ? Rgba::kHalf : Rgba::kNo;
+#endif
+  if (copy.rgba == Rgba::kFloat) {
+    copy.ones.resize(4 * w);
+    for (size_t x = 0; x < w; ++x) std::memcpy(&copy.ones[4 * x], &kOne, 4);
+  } else if (copy.rgba == Rgba::kHalf) {
+    copy.ones.resize(2 * w);
+    for (size_t x = 0; x < w; ++x) copy.ones[2 * x] = 0x00, copy.ones[2 * x + 1] = 0x3c;  // half 1.0, little-endian
+  }
+  return copy;
+}
+
+// One line of a part (its channels' planes at `line`) into the image row `row`.
+void copy_line(const LineCopy& copy, const std::uint8_t* line, float* row) {
+#if defined(__x86_64__)
+  if (copy.rgba != Rgba::kNo) {
+    const std::uint8_t* src[4] = {nullptr, nullptr, nullptr, nullptr};
+    for (size_t c = copy.named; c < 4; ++c) src[c] = copy.ones.data();
+    for (const Wanted& want : copy.want) src[want.image_channel] = line + copy.offset[size_t(want.channel)];
+    if (copy.rgba == Rgba::kFloat) float_planes_to_rgba(src, row, copy.w);
+    else half_planes_to_rgba_f16c(src, row, copy.w);
+    return;
+  }
+#endif
+  for (const Wanted& want : copy.want) {
+    const std::uint8_t* src = line + copy.offset[size_t(want.channel)];
+    float* dst = row + want.image_channel;
+    if (want.type == EXR_PIXEL_FLOAT) {
+      for (size_t x = 0; x < copy.w; ++x) std::memcpy(dst + x * copy.nc, src + 4 * x, 4);
+    } else {
+      halves_to_floats(src, dst, copy.nc, copy.w);
+    }
+  }
+}
+
+// The buffers of a chunk's bytes, reused from chunk to chunk.
+struct ChunkBytes {
+  std::vector<std::uint8_t> packed, inflated, unpacked;
+};
+
+// Reads the chunk of part p that holds line y0: its info, the data window's lines first .. last in it,
+// and its bytes as stored (into bytes.packed). False where the chunk's sizes do not fit the part or
+// the file.
+bool read_chunk(exr_const_context_t c, int p, std::int64_t y0, const PartLayout& part, std::uint64_t file_size,
+                exr_chunk_info_t& ci, std::int64_t& first, std::int64_t& last, ChunkBytes& bytes) {
+  if (exr_read_scanline_chunk_info(c, p, int(y0), &ci) != EXR_ERR_SUCCESS) return false;
+  first = std::max<std::int64_t>(ci.start_y, part.dw.min.y);
+  last = std::min<std::int64_t>(std::int64_t(ci.start_y) + ci.height - 1, part.dw.max.y);
+  if (first > last || ci.unpacked_size != size_t(last - first + 1) * part.line_bytes || ci.packed_size > file_size ||
+      ci.data_offset > file_size - ci.packed_size)
+    return false;
+  bytes.packed.resize(ci.packed_size);
+  return exr_read_chunk(c, p, &ci, bytes.packed.data()) == EXR_ERR_SUCCESS;
+}
+
+// The chunk's uncompressed lines (`lines`): its stored bytes, or those inflated with the ZIP predictor
+// and interleave undone. False where it does not inflate to its size.
+bool unpack_chunk(exr_compression_t comp, const exr_chunk_info_t& ci, libdeflate_decompressor* inflater,
+                  ChunkBytes& bytes, const std::uint8_t*& lines) {
+  lines = bytes.packed.data();
+  if (comp != EXR_COMPRESSION_NONE && ci.packed_size < ci.unpacked_size) {
+    // smaller than its pixels: deflated (a chunk that would not shrink is stored as it is)
+    bytes.inflated.resize(ci.unpacked_size);
+    bytes.unpacked.resize(ci.unpacked_size);
+    size_t got = 0;
+    if (libdeflate_zlib_decompress(inflater, bytes.packed.data(), bytes.packed.size(), bytes.inflated.data(),
+                                   bytes.inflated.size(), &got) != LIBDEFLATE_SUCCESS ||
+        got != ci.unpacked_size)
+      return false;
+    undo_zip_predictor(bytes.inflated.data(), bytes.inflated.size());
+    deinterleave(bytes.inflated.data(), bytes.unpacked.data(), bytes.unpacked.size());
+    lines = bytes.unpacked.data();
+    return true;
+  }
+  return ci.packed_size == ci.unpacked_size;
+}
+
+// Every chunk of part p, decoded and copied line by line into `out`.
+bool read_part(exr_const_context_t c, int p, const PartLayout& part, const LineCopy& copy, std::uint64_t file_size,
+               libdeflate_decompressor* inflater, ChunkBytes& bytes, Image& out) {
+  for (std::int64_t y0 = part.dw.min.y; y0 <= part.dw.max.y; y0 += part.lines) {
+    exr_chunk_info_t ci;
+    std::int64_t first = 0, last = 0;
+    const std::uint8_t* lines = nullptr;
+    if (!read_chunk(c, p, y0, part, file_size, ci, first, last, bytes) ||
+        !unpack_chunk(part.comp, ci, inflater, bytes, lines))
+      return false;
+    for (std::int64_t y = first; y <= last; ++y)
+      copy_line(copy, lines + size_t(y - first) * part.line_bytes,
+                out.data.data() + size_t(y - part.dw.min.y) * copy.w * copy.nc);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out) {
+  static_assert(sizeof(Imath::half) == 2, "half is two bytes");
+  if (!little_endian_host()) return false;
+  Context ctx;
+  std::uint64_t file_size = 0;
+  int parts = 0;
+  if (!open_exr(path, ctx, file_size) || exr_get_count(ctx.c, &parts) != EXR_ERR_SUCCESS) return false;
+  std::vector<std::vector<Wanted>> plan;
+  if (!plan_channels(ctx.c, parts, channels, out, plan)) return false;
 
   Inflater inflater;
   if (!inflater.d) return false;
-  std::vector<std::uint8_t> packed, inflated, unpacked;
+  ChunkBytes bytes;
   const size_t nc = size_t(out.channels), w = size_t(out.width);
   bool ones_written = false;  // the channels after the named ones (a part read by the transposing copy writes them)
   for (int p = 0; p < parts; ++p) {
     if (plan[size_t(p)].empty()) continue;
-    exr_storage_t storage;
-    exr_compression_t comp;
-    exr_attr_box2i_t dw;
-    const exr_attr_chlist_t* list = nullptr;
-    int32_t lines = 0;
-    if (exr_get_storage(ctx.c, p, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE ||
-        exr_get_compression(ctx.c, p, &comp) != EXR_ERR_SUCCESS ||
-        (comp != EXR_COMPRESSION_NONE && comp != EXR_COMPRESSION_ZIPS && comp != EXR_COMPRESSION_ZIP) ||
-        exr_get_data_window(ctx.c, p, &dw) != EXR_ERR_SUCCESS || exr_get_channels(ctx.c, p, &list) != EXR_ERR_SUCCESS ||
-        exr_get_scanlines_per_chunk(ctx.c, p, &lines) != EXR_ERR_SUCCESS || lines <= 0)
-      return false;
-    // One line of a chunk, uncompressed: each channel's samples in turn, in the list's order.
-    std::vector<size_t> offset(size_t(list->num_channels) + 1, 0);
-    for (int c = 0; c < list->num_channels; ++c)
-      offset[size_t(c) + 1] = offset[size_t(c)] + w * (list->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4);
-    const size_t line_bytes = offset.back();
-    // Three or four channels of one type into an RGBA image: the transposing copy.
-    enum class Rgba { kNo, kFloat, kHalf } rgba = Rgba::kNo;
-#if defined(__x86_64__)
-    {
-      static const bool f16c = cpu_has_f16c();
-      const auto& want = plan[size_t(p)];
-      bool one_type = nc == 4 && want.size() >= 3;
-      for (const Wanted& x : want) one_type = one_type && x.type == want[0].type;
-      if (one_type) rgba = want[0].type == EXR_PIXEL_FLOAT ? Rgba::kFloat : f16c ? Rgba::kHalf : Rgba::kNo;
-    }
-#endif
-    ones_written = ones_written || rgba != Rgba::kNo;
-    std::vector<std::uint8_t> ones;  // a line of 1.0 in the part's type: the channels after the named ones
-    if (rgba == Rgba::kFloat) {
-      ones.resize(4 * w);
-      for (size_t x = 0; x < w; ++x) std::memcpy(&ones[4 * x], &kOne, 4);
-    } else if (rgba == Rgba::kHalf) {
-      ones.resize(2 * w);
-      for (size_t x = 0; x < w; ++x) ones[2 * x] = 0x00, ones[2 * x + 1] = 0x3c;  // half 1.0, little-endian
-    }
-    for (std::int64_t y0 = dw.min.y; y0 <= dw.max.y; y0 += lines) {
-      exr_chunk_info_t ci;
-      if (exr_read_scanline_chunk_info(ctx.c, p, int(y0), &ci) != EXR_ERR_SUCCESS) return false;
-      const std::int64_t first = std::max<std::int64_t>(ci.start_y, dw.min.y);
-      const std::int64_t last = std::min<std::int64_t>(std::int64_t(ci.start_y) + ci.height - 1, dw.max.y);
-      if (first > last || ci.unpacked_size != size_t(last - first + 1) * line_bytes || ci.packed_size > file_size ||
-          ci.data_offset > file_size - ci.packed_size)
-        return false;
-      packed.resize(ci.packed_size);
-      if (exr_read_chunk(ctx.c, p, &ci, packed.data()) != EXR_ERR_SUCCESS) return false;
-      const std::uint8_t* bytes = packed.data();
-      if (comp != EXR_COMPRESSION_NONE && ci.packed_size < ci.unpacked_size) {
-        // smaller than its pixels: deflated (a chunk that would not shrink is stored as it is)
-        inflated.resize(ci.unpacked_size);
-        unpacked.resize(ci.unpacked_size);
-        size_t got = 0;
-        if (libdeflate_zlib_decompress(inflater.d, packed.data(), packed.size(), inflated.data(), inflated.size(),
-                                       &got) != LIBDEFLATE_SUCCESS ||
-            got != ci.unpacked_size)
-          return false;
-        undo_zip_predictor(inflated.data(), inflated.size());
-        deinterleave(inflated.data(), unpacked.data(), unpacked.size());
-        bytes = unpacked.data();
-      } else if (ci.packed_size != ci.unpacked_size) {
-        return false;
-      }
-      for (std::int64_t y = first; y <= last; ++y) {
-        const std::uint8_t* line = bytes + size_t(y - first) * line_bytes;
-        float* row = out.data.data() + size_t(y - dw.min.y) * w * nc;
-#if defined(__x86_64__)
-        if (rgba != Rgba::kNo) {
-          const std::uint8_t* src[4] = {nullptr, nullptr, nullptr, nullptr};
-          for (size_t c = channels.size(); c < 4; ++c) src[c] = ones.data();
-          for (const Wanted& want : plan[size_t(p)]) src[want.image_channel] = line + offset[size_t(want.channel)];
-          if (rgba == Rgba::kFloat) float_planes_to_rgba(src, row, w);
-          else half_planes_to_rgba_f16c(src, row, w);
-          continue;
-        }
-#endif
-        for (const Wanted& want : plan[size_t(p)]) {
-          const std::uint8_t* src = line + offset[size_t(want.channel)];
-          float* dst = row + want.image_channel;
-          if (want.type == EXR_PIXEL_FLOAT) {
-            for (size_t x = 0; x < w; ++x) std::memcpy(dst + x * nc, src + 4 * x, 4);
-          } else {
-            halves_to_floats(src, dst, nc, w);
-          }
-        }
-      }
-    }
+    PartLayout part;
+    if (!read_part_layout(ctx.c, p, w, part)) return false;
+    const LineCopy copy = line_copy(plan[size_t(p)], part, channels.size(), w, nc);
+    ones_written = ones_written || copy.rgba != Rgba::kNo;
+    if (!read_part(ctx.c, p, part, copy, file_size, inflater.d, bytes, out)) return false;
   }
   if (!ones_written)
     for (size_t i = 0; i < out.pixel_count(); ++i)
@@ -339,12 +411,9 @@ std::string exr_chunk_problem(const std::string& path) {
 }
 
 bool read_simple_exr_header(const std::string& path, SimpleExrHeader* h) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
-  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-  init.error_handler_fn = quiet;
   Context ctx;
-  if (exr_start_read(&ctx.c, path.c_str(), &init) != EXR_ERR_SUCCESS) return false;
+  std::uint64_t file_size = 0;
+  if (!open_exr(path, ctx, file_size)) return false;
   int parts = 0;
   exr_storage_t storage;
   exr_attr_box2i_t dw, disp;

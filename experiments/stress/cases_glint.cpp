@@ -1,7 +1,7 @@
 // Stress cases of the microdetail glint models (Zirr & Kaplanyan 2016;
 // shaders/sand/glint_*.glsl, glint/models/*.glsl, common/binomial.glsl) through
 // shaders/tests/glint_terms.comp and glint_math.comp against the fp64 twin
-// (core/material/fp64/glint_fp64.h), stage by stage as
+// (core/testkit/glint_fp64.h), stage by stage as
 // tests/core/material/glint_models.cpp does: each stage is fed the GPU's fp32
 // results of the stages before it (frame, roughness, per-pixel values), so an
 // error is that stage's own.
@@ -14,9 +14,9 @@
 // > 0) and the quantity is conditioned within the case's bound (grains at a
 // tiny alpha_l: the sampled slope's fp32 error over alpha_l); the others are
 // counted, and must still be finite and non-negative.
-#include "core/material/fp64/glint_fp64.h"
-#include "core/material/fp64/sand_fp64.h"
-#include "core/material/fp64/harness_io.h"
+#include "core/testkit/glint_fp64.h"
+#include "core/testkit/harness_io.h"
+#include "core/testkit/sand_fp64.h"
 #include "core/vk/compute_harness.h"
 #include "experiments/stress/stress_internal.h"
 

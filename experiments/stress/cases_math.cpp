@@ -1,5 +1,5 @@
 // Stress cases of the shared shader helpers and the sand's scalar terms:
-// shaders/tests/stress_math.comp against the fp64 twins (core/material/fp64)
+// shaders/tests/stress_math.comp against the fp64 twins (core/testkit)
 // and core::sand_sigmoid (the stable sigmoid in double) on extreme arguments.
 // err = |gpu - fp64| / max(|fp64|, floor) with the floor each case states.
 //
@@ -7,9 +7,9 @@
 // of one record's outputs against the fp64 twin, the counters that must stay
 // 0 and the bound; run_math_case makes the records, runs the shader once and
 // checks them all.
-#include "core/material/fp64/glint_fp64.h"
-#include "core/material/fp64/sand_fp64.h"
 #include "core/material/sand_material.h"
+#include "core/testkit/glint_fp64.h"
+#include "core/testkit/sand_fp64.h"
 #include "core/vk/compute_harness.h"
 #include "experiments/stress/stress_internal.h"
 
@@ -172,7 +172,8 @@ std::vector<Record> log_pow_specials() {
   return recs;
 }
 
-std::vector<MathRow> math_rows() {
+// In the fast subset: the sand's sigmoid and the vector helpers of shaders/common/.
+std::vector<MathRow> fast_helper_rows() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<MathRow> rows;
   // ---- sigmoid of eq. 4.37 (shaders/sand/transition.glsl) and stable_logistic
@@ -253,6 +254,12 @@ std::vector<MathRow> math_rows() {
          vec3 want = fallback ? vec3(0, 0, 1) : v / glm::length(v / m) / m;
          for (int k = 0; k < 3; ++k) t.err.add(g[k], want[k], 1.0, "v = " + str3(v));
        }});
+  return rows;
+}
+
+// In the fast subset: Oren-Nayar, the grain cells' keys and the porosity of shaders/sand/.
+std::vector<MathRow> fast_sand_rows() {
+  std::vector<MathRow> rows;
   // ---- Oren-Nayar (sand/oren_nayar.glsl) near 0 and 90 degrees
   rows.push_back(
       {"math.oren-nayar-0-90deg", true, 47, 1e-3,
@@ -339,6 +346,12 @@ std::vector<MathRow> math_rows() {
          t.err.add(o[0], want, 1e-30, "P " + fmt(P) + " d " + fmt(d));
          t.err.add(o[1], ref::rho_n_intensity(want), 1e-30, "rho_n^intensity P " + fmt(P) + " d " + fmt(d));
        }});
+  return rows;
+}
+
+// Only in the full run: transmission, the glint gate, safe_log1p and safe_pow, micro normals.
+std::vector<MathRow> full_run_rows() {
+  std::vector<MathRow> rows;
   // ---- transmission t (sand/transmission.glsl), T = 1, R_t in {0, 1}
   rows.push_back(
       {"math.transmission-T1-Rt01", false, 61, 1e-3,
@@ -430,6 +443,14 @@ std::vector<MathRow> math_rows() {
          for (int k = 0; k < 3; ++k) t.err.add(o[k], m[k], 1.0, "xi (" + fmt(rec[1]) + ", " + fmt(rec[2]) + ")");
        },
        {"skipped (margin <= 1e-4)"}});
+  return rows;
+}
+
+// Every math case, in the order run_stress runs them.
+std::vector<MathRow> math_rows() {
+  std::vector<MathRow> rows;
+  for (auto* group : {fast_helper_rows, fast_sand_rows, full_run_rows})
+    for (MathRow& row : group()) rows.push_back(std::move(row));
   return rows;
 }
 

@@ -1,6 +1,6 @@
 // Stress cases of the sand material's terms: shaders/sand/sand.glsl through
 // shaders/tests/sand_terms.comp (the compute harness) against the fp64 twin
-// (core/material/fp64/sand_fp64.h) on extreme inputs, for every glint model
+// (core/testkit/sand_fp64.h) on extreme inputs, for every glint model
 // where the case applies.
 //
 // Compared: L_final (and sand_shade(), which must equal it) per colour channel,
@@ -14,10 +14,10 @@
 // within 1e-5 of 1/2. Grain random numbers (exact multiples of 2^-24) must
 // agree exactly. Every output term must be finite and every non-negative term
 // >= 0 on every item (compared or not).
-#include "core/material/fp64/harness_io.h"
-#include "core/material/fp64/glint_fp64.h"
-#include "core/material/fp64/sand_fp64.h"
 #include "core/material/sand_material.h"
+#include "core/testkit/glint_fp64.h"
+#include "core/testkit/harness_io.h"
+#include "core/testkit/sand_fp64.h"
 #include "core/vk/compute_harness.h"
 #include "experiments/stress/stress_internal.h"
 

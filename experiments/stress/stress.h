@@ -3,7 +3,7 @@
 // code on extreme inputs -- through the renderer (core::SurfaceRenderer,
 // core::FrameGraph, build_variant, core::TaaPass) at a small resolution, or
 // through the compute harness (core::run_compute) against the fp64 twins of
-// core/material/fp64 -- and reports the pixels (or outputs) that are not
+// core/testkit -- and reports the pixels (or outputs) that are not
 // finite or negative, the largest relative error against the fp64 reference
 // where one exists, and the energy or range bounds that apply. The cases, their
 // bounds and what they found are listed in experiments/stress/README.md.

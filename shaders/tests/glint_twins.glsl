@@ -1,4 +1,4 @@
-// The built-in glint models that have fp64 twins (core/material/fp64/
+// The built-in glint models that have fp64 twins (core/testkit/
 // glint_fp64.h), all in one shader for the harnesses that compare them:
 // each model file's glint_D renamed, and a glint_D that calls the one
 // twin_model names (its SandParams.glint_model id, the define

@@ -10,9 +10,9 @@
 //    Gaussian for the rest, floored) against the exact binomial in fp64: its
 //    law computed independently from the method's description, and its
 //    error against Binomial(n, p), mean and distribution over counts.
+#include "core/testkit/glint_fp64.h"
+#include "core/testkit/harness_io.h"
 #include "core/vk/compute_harness.h"
-#include "core/material/fp64/glint_fp64.h"
-#include "core/material/fp64/harness_io.h"
 #include "tests/support/vk_test_util.h"
 
 #include <gtest/gtest.h>

@@ -122,7 +122,7 @@ TEST(GlintModel, DeclarationsAreParsedAndMalformedOnesNamed) {
 
 // Adding a built-in model is adding its file: no source of the product lists
 // the built-in models' names (a list would be a second place to add one). The
-// fp64 twins (core/material/fp64/) and the harnesses that compare them
+// fp64 twins (core/testkit/) and the harnesses that compare them
 // (shaders/tests/) implement particular built-in models and name them; tests
 // and experiment files use models by name.
 TEST(GlintModel, NoSecondListOfModelNames) {
@@ -132,7 +132,7 @@ TEST(GlintModel, NoSecondListOfModelNames) {
   const fs::path root = fs::path(GLINTLAB_SHADER_DIR).parent_path();
   const std::set<std::string> exts = {".cpp", ".h", ".glsl", ".comp", ".frag", ".vert", ".py"};
   const std::vector<fs::path> exempt = {root / "shaders" / "glint" / "models", root / "shaders" / "tests",
-                                        root / "core" / "material" / "fp64"};
+                                        root / "core" / "testkit"};
   size_t scanned = 0;
   for (const char* top : {"core", "experiments", "shaders", "metrics"}) {
     for (const auto& e : fs::recursive_directory_iterator(root / top)) {

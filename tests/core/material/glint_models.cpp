@@ -6,10 +6,10 @@
 // analytic cases, the limit (zirr and supersampled grains -> beckmann) and
 // the coherence of zirr under camera motion.
 #include "core/material/sand_material.h"
+#include "core/testkit/glint_fp64.h"
+#include "core/testkit/harness_io.h"
 #include "core/util/json_check.h"
 #include "core/vk/compute_harness.h"
-#include "core/material/fp64/glint_fp64.h"
-#include "core/material/fp64/harness_io.h"
 #include "tests/support/vk_test_util.h"
 
 #include <glm/geometric.hpp>

@@ -5,9 +5,9 @@
 #include "core/vk/compute_harness.h"
 #include "core/util/json_check.h"
 #include "core/material/sand_material.h"
-#include "core/material/fp64/harness_io.h"
-#include "core/material/fp64/glint_fp64.h"
-#include "core/material/fp64/sand_fp64.h"
+#include "core/testkit/harness_io.h"
+#include "core/testkit/glint_fp64.h"
+#include "core/testkit/sand_fp64.h"
 #include "tests/support/vk_test_util.h"
 
 #include <glslang/Public/ResourceLimits.h>

@@ -10,7 +10,7 @@
 // skip items whose decisions fp32 rounding could flip.
 #pragma once
 
-#include "core/material/fp64/sand_fp64.h"
+#include "core/testkit/sand_fp64.h"
 
 #include <glm/vec2.hpp>
 

@@ -4,7 +4,7 @@
 // by the tests (tests/core/material/) and by `glintlab stress`.
 #pragma once
 
-#include "core/material/fp64/glint_fp64.h"
+#include "core/testkit/glint_fp64.h"
 #include "core/material/sand_material.h"
 #include "core/vk/vk_context.h"
 

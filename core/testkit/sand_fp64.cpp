@@ -1,6 +1,6 @@
-#include "core/material/fp64/sand_fp64.h"
+#include "core/testkit/sand_fp64.h"
 
-#include "core/material/fp64/glint_fp64.h"
+#include "core/testkit/glint_fp64.h"
 
 #include <glm/geometric.hpp>
 

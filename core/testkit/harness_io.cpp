@@ -1,4 +1,4 @@
-#include "core/material/fp64/harness_io.h"
+#include "core/testkit/harness_io.h"
 
 #include "core/vk/compute_harness.h"
 

@@ -1,4 +1,4 @@
-#include "core/material/fp64/glint_fp64.h"
+#include "core/testkit/glint_fp64.h"
 
 #include <glm/geometric.hpp>
 
