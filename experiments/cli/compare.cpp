@@ -52,6 +52,26 @@ std::vector<bool> bad_pixels(const Image& img) {
   return bad;
 }
 
+// The RGBA image metrics::read_image makes of a file with `in.channels` channels, from pixels in
+// memory: grey (1, 2) to R, G and B, alpha 1 where there is none.
+Image rgba_of(const CompareImage& in) {
+  const int c = in.channels;
+  if (c < 1 || c > 4 || in.width < 1 || in.height < 1)
+    throw std::invalid_argument("'" + in.path + "': pixels of " + std::to_string(in.width) + "x" +
+                                std::to_string(in.height) + "x" + std::to_string(c) +
+                                "; allowed: at least 1x1, with 1 to 4 channels");
+  Image img = Image::unfilled(in.width, in.height, 4);
+  const float* src = in.pixels;
+  float* dst = img.data.data();
+  for (std::size_t i = 0, n = img.pixel_count(); i < n; ++i, src += c, dst += 4) {
+    dst[0] = src[0];
+    dst[1] = c >= 3 ? src[1] : src[0];
+    dst[2] = c >= 3 ? src[2] : src[0];
+    dst[3] = c == 2 ? src[1] : c == 4 ? src[3] : 1.0f;
+  }
+  return img;
+}
+
 std::size_t nonfinite_pixels(const Image& img) {
   const metrics::PixelScan s = metrics::scan_pixels(img, 3);
   return s.nan + s.infinite;  // a pixel can be in both: an upper bound of the count, > 0 exactly when any
@@ -312,15 +332,20 @@ Comparison compare_images(const CompareOptions& o, const CompareImage& ref_image
       std::string tag = source.tag;
       int channels = source.channels;
       in.path = source.path;
-      Image read;
-      if (!source.pixels) read = read_image_file(source.path, &tag, &channels);
-      const Image& img = source.pixels ? *source.pixels : read;
+      // The input as RGBA, then in XYZ in place: the one image an input becomes (CompareImage).
+      Image img = source.pixels ? rgba_of(source) : read_image_file(source.path, &tag, &channels);
       if (channels < 3)  // said, never silent: what the file's channels are taken for
         err << "compare: " << what << " '" << in.path << "' has " << channels << " channel" << (channels == 1 ? "" : "s")
             << ": read as grey" << (channels == 2 ? " (the first) and alpha (the second)" : "") << "\n";
       in.scan = metrics::scan_pixels(img, 3);
       in.bad = bad_pixels(img);
-      in.xyz = metrics::metric_xyz(cm, img, metrics::input_space(cm, o.space, tag, "compare: " + what, in.path, err), mo);
+      const std::string from = metrics::input_space(cm, o.space, tag, "compare: " + what, in.path, err);
+      if (mo.display_view.empty()) {
+        cm.convert(img, from, metrics::kXyzD65Space);  // what metric_xyz gives, without its copy
+        in.xyz = std::move(img);
+      } else {
+        in.xyz = metrics::metric_xyz(cm, img, from, mo);
+      }
       if (in.scan.nan + in.scan.infinite == 0) in.converted_bad = nonfinite_pixels(in.xyz);
     };
     load(ref, ref_image, "reference");
@@ -422,13 +447,13 @@ int run_compare(const CompareOptions& o, std::ostream& out, std::ostream& err) {
     return int(kExitBadInput);
   };
   std::vector<CompareImage> tests;
-  if (!o.test.empty()) tests.push_back({o.test, nullptr, 4, ""});
-  for (const auto& t : o.tests) tests.push_back({t, nullptr, 4, ""});
+  if (!o.test.empty()) tests.push_back({o.test});
+  for (const auto& t : o.tests) tests.push_back({t});
   if (!o.map_path.empty() && tests.size() > 1)
     return bad_input("--map writes one map: give it with one test image (got " + std::to_string(tests.size()) + ")");
   Comparison c;
   try {
-    c = compare_images(o, {o.ref, nullptr, 4, ""}, tests, err);
+    c = compare_images(o, {o.ref}, tests, err);
   } catch (const IoError&) {
     throw;  // the system's reason: exit 4
   } catch (const std::invalid_argument& e) {

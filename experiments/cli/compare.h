@@ -65,7 +65,6 @@
 
 #include <cmath>
 #include <cstddef>
-#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -107,12 +106,17 @@ struct CompareOptions {
   int num_exposures = 0;              // 0 = max(2, ceil(stop - start)); >= 1 otherwise
 };
 
-// One image of a comparison: a file, or pixels already decoded (the Python module's arrays).
+// One image of a comparison: a file, or pixels already decoded (the Python module's arrays), not owned.
+// compare_images reads them once, into the RGBA image a file of `channels` channels reads as (grey to
+// R, G and B, alpha 1 where there is none), which the conversion to CIE XYZ then changes in place;
+// they are not copied before that, and must outlive the call.
 struct CompareImage {
-  std::string path;                     // the file; with `pixels`, the name messages and the JSON give it
-  std::shared_ptr<const Image> pixels;  // RGBA, as metrics::read_image returns a file's; null: read `path`
-  int channels = 4;                     // the channels the pixels had (read_image's file_channels)
-  std::string tag;                      // their colour-space tag, "" for none (read_image's colorspace_tag)
+  std::string path;               // the file; with `pixels`, the name messages and the JSON give it
+  const float* pixels = nullptr;  // height x width x channels floats, row-major, interleaved; null: read `path`
+  int width = 0;
+  int height = 0;
+  int channels = 4;               // 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA (read_image's file_channels)
+  std::string tag;                // their colour-space tag, "" for none (read_image's colorspace_tag)
 };
 
 // An input as compared: in CIE XYZ D65, with its scan (before any colour conversion).

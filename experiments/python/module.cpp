@@ -12,6 +12,7 @@
 
 #include <dlfcn.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -45,29 +46,23 @@ py::array to_array(Image&& img, std::vector<py::ssize_t> shape) {
   return py::array_t<float>(shape, owned->data.data(), free_it);
 }
 
-// H x W x C float32 (C-contiguous, C in 1..4) as the RGBA image metrics::read_image makes of a file
-// with C channels: grey (1, 2) copied to R, G and B, alpha 1 where there is none.
-std::shared_ptr<const Image> rgba_of(const FloatArray& a) {
-  const int h = int(a.shape(0)), w = int(a.shape(1)), c = int(a.shape(2));
-  auto img = std::make_shared<Image>(Image::unfilled(w, h, 4));
-  const float* src = a.data();
-  float* dst = img->data.data();
-  for (std::size_t i = 0, n = std::size_t(w) * std::size_t(h); i < n; ++i, src += c, dst += 4) {
-    dst[0] = src[0];
-    dst[1] = c >= 3 ? src[1] : src[0];
-    dst[2] = c >= 3 ? src[2] : src[0];
-    dst[3] = c == 2 ? src[1] : c == 4 ? src[3] : 1.0f;
-  }
-  return img;
-}
+// The address of each array's pixels the last call of compare handed to compare_images, in the
+// order reference, tests: what the tests check the arrays against (read in place, not copied).
+std::vector<std::uintptr_t> last_compare_pixels;
 
-// One input of compare: (path) or (array, name, tag, channels).
-CompareImage compare_image(const py::tuple& t) {
+// One input of compare: (path) or (array, name, tag, channels), the array H x W x C float32,
+// C-contiguous, C in 1..4 (glintlab/__init__.py makes it so). Its pixels are read in place
+// (CompareImage): `keep` holds the array until the comparison is done.
+CompareImage compare_image(const py::tuple& t, std::vector<FloatArray>& keep) {
   CompareImage in;
   in.path = t[0].cast<std::string>();
   if (!t[1].is_none()) {
-    const FloatArray a = t[1].cast<FloatArray>();
-    in.pixels = rgba_of(a);
+    keep.push_back(t[1].cast<FloatArray>());  // the same array where it is float32 and C-contiguous
+    const FloatArray& a = keep.back();
+    if (a.ndim() != 3) throw std::invalid_argument("compare: '" + in.path + "': an array of H x W x C allowed");
+    in.pixels = a.data();
+    in.height = int(a.shape(0));
+    in.width = int(a.shape(1));
     in.channels = int(a.shape(2));
     in.tag = t[2].cast<std::string>();
   }
@@ -75,9 +70,13 @@ CompareImage compare_image(const py::tuple& t) {
 }
 
 py::tuple compare(const py::tuple& reference, const py::list& tests, const CompareOptions& options) {
-  const CompareImage ref = compare_image(reference);
+  std::vector<FloatArray> keep;
+  const CompareImage ref = compare_image(reference, keep);
   std::vector<CompareImage> test_images;
-  for (const auto& t : tests) test_images.push_back(compare_image(t.cast<py::tuple>()));
+  for (const auto& t : tests) test_images.push_back(compare_image(t.cast<py::tuple>(), keep));
+  last_compare_pixels.clear();
+  last_compare_pixels.push_back(std::uintptr_t(ref.pixels));
+  for (const CompareImage& in : test_images) last_compare_pixels.push_back(std::uintptr_t(in.pixels));
   std::ostringstream err;
   Comparison c;
   {
@@ -303,6 +302,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("report", &RunOptions::report);
 
   m.def("compare", &compare);
+  // Test hook (tests/python): the pixel addresses the last compare read, 0 for a file.
+  m.def("_last_compare_pixels", [] { return last_compare_pixels; });
   m.def("read_image", &read_image);
   m.def("read_sequence", &read_sequence);
   m.def("write_frames", &write_frames);

@@ -79,6 +79,34 @@ def test_compare_multilayer_arrays_equal_cli_on_files():
     assert_metrics_equal(py, cli_compare(test, ref, "--metric", "flip"))
 
 
+def test_compare_and_flip_read_float32_arrays_in_place(tmp_path):
+    # C-contiguous float32 arrays of 1, 3 and 4 channels reach the C++ side as the arrays themselves
+    # (the addresses it read, through a test hook), and give the CLI's numbers on the files to the bit.
+    ref, test = glintlab.read_image(HDR_REF), glintlab.read_image(HDR_TEST)
+    js = cli_compare(HDR_TEST, HDR_REF)
+    alpha = np.ones_like(ref[..., :1])
+    grey = np.ascontiguousarray(ref[..., 1]), np.ascontiguousarray(test[..., 1])
+    for r, t, equal_cli in [(ref, test, True),
+                            (np.concatenate([ref, alpha], axis=2), np.concatenate([test, alpha], axis=2), True),
+                            (grey[0][..., np.newaxis], grey[1][..., np.newaxis], False), (grey[0], grey[1], False)]:
+        py = glintlab.compare(r, t)
+        assert glintlab._core._last_compare_pixels() == [r.ctypes.data, t.ctypes.data]
+        if equal_cli:
+            assert_metrics_equal(py, js)
+    grey_py = glintlab.compare(*grey)  # grey reads as R = G = B, as a 1-channel file does
+    grey_as_rgb = glintlab.compare(*[np.repeat(g[..., np.newaxis], 3, axis=2) for g in grey])
+    for m, values in grey_as_rgb.items():
+        assert grey_py[m]["mean"] == values["mean"], m
+        assert values["map"] is None or same(grey_py[m]["map"], values["map"]), m
+    error_map, mean, _ = glintlab.flip(ref, test)
+    assert glintlab._core._last_compare_pixels() == [ref.ctypes.data, test.ctypes.data]
+    assert mean == js["metrics"]["flip"]["mean"] and same(error_map, cli_map(tmp_path, HDR_TEST, HDR_REF, "flip"))
+    # A file is read by the C++ side (address 0); a non-contiguous array is made contiguous first.
+    glintlab.compare(HDR_REF, test[:, ::-1], metrics="psnr")
+    addresses = glintlab._core._last_compare_pixels()
+    assert addresses[0] == 0 and addresses[1] not in (0, test.ctypes.data)
+
+
 def test_compare_uint8_arrays_are_srgb_code_values():
     # The PNG's 8-bit values as a uint8 array give what the CLI gives for the file (tagged sRGB).
     png = np.round(glintlab.read_image(LDR_REF) * 255).astype(np.uint8)

@@ -13,9 +13,10 @@ regression gate, as the command line has them (the same C++ functions, in this p
 
 Images are paths (anything OpenImageIO reads) or numpy arrays, H x W (grey) or H x W x C with C in
 1 ... 4 (grey, grey + alpha, RGB, RGBA), sequences T x H x W [x C]. The array rule:
-  - float32 is taken as it is (a C-contiguous array is read in place, any other is made contiguous
-    first); float64 and float16 are converted to float32 (nearest). Their values are scene-linear
-    (the OCIO role scene_linear) unless `space` names another OCIO colour space.
+  - float32 is taken as it is (compare and flip read a C-contiguous array in place, without a copy;
+    any other is made contiguous first); float64 and float16 are converted to float32 (nearest).
+    Their values are scene-linear (the OCIO role scene_linear) unless `space` names another OCIO
+    colour space.
   - uint8 are sRGB code values: v x (1/255 in float32, as OpenImageIO converts an 8-bit file) in the
     config's "sRGB" space (the IEC 61966-2-1 curve) unless `space` is given.
   - Any other dtype, and any other shape, raises ValueError.
