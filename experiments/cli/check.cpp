@@ -215,20 +215,17 @@ std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohman
   return rows;
 }
 
-int run_check(const std::string& summary_path, const std::string& baseline_path,
+static int check_command(const std::string& summary_path, const std::string& baseline_path,
               const std::vector<std::string>& tolerance_args, std::ostream& out, std::ostream& err) {
+  // Bad input throws: run_check's run_guarded says it and returns 2.
+  const std::map<std::string, double> tol = parse_check_tolerances(tolerance_args);
+  const nlohmann::json summary = read_json_file(summary_path);
+  const nlohmann::json baseline = read_json_file(baseline_path);
   std::vector<CheckRow> rows;
   try {
-    const std::map<std::string, double> tol = parse_check_tolerances(tolerance_args);
-    const nlohmann::json summary = read_json_file(summary_path);
-    const nlohmann::json baseline = read_json_file(baseline_path);
     rows = check_summary(summary, baseline, tol, summary_path, baseline_path);
-  } catch (const ConfigError& e) {
-    err << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::invalid_argument& e) {
-    err << "error: check: " << e.what() << "\n";
-    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {  // which command the message is from
+    throw ConfigError(std::string("check: ") + e.what());
   }
   size_t regressions = 0, checks = 0;
   std::map<std::string, std::vector<std::string>> skipped;  // metric -> variants whose baseline lacks it
@@ -258,6 +255,11 @@ int run_check(const std::string& summary_path, const std::string& baseline_path,
   }
   out << "\n";
   return regressions ? kExitDefect : kExitOk;
+}
+
+int run_check(const std::string& summary_path, const std::string& baseline_path,
+              const std::vector<std::string>& tolerance_args, std::ostream& out, std::ostream& err) {
+  return run_guarded([&] { return check_command(summary_path, baseline_path, tolerance_args, out, err); }, err);
 }
 
 void add_check_command(CLI::App& app, int& exit_code) {

@@ -62,7 +62,7 @@ std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohman
                                     const std::string& summary_file = "the summary",
                                     const std::string& baseline_file = "the baseline");
 
-// The CLI: prints a table to `out`; 0 no regression, 1 a regression, 2 bad input.
+// The CLI: prints a table to `out`; 0 no regression, 1 a regression, 2 bad input (exit_codes.h).
 int run_check(const std::string& summary_path, const std::string& baseline_path,
               const std::vector<std::string>& tolerance_args, std::ostream& out, std::ostream& err);
 

@@ -67,14 +67,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
         opt->shard_index = k - 1;
         opt->shard_count = n;
       }
-      if (opt->out_dir.empty()) {
-        try {
-          opt->out_dir = default_run_dir(opt->experiment);
-        } catch (const ConfigError& e) {
-          std::cerr << "error: " << e.what() << "\n";
-          return int(kExitBadInput);
-        }
-      }
+      if (opt->out_dir.empty()) opt->out_dir = default_run_dir(opt->experiment);
       return run_experiment(*opt, std::cerr);
     };
   };

@@ -552,6 +552,13 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
   reserve_heap_in_huge_pages(
       std::min(size_t(p.width) * size_t(p.height) * (280 + 70 * p.tests.size()), kMaxHugeReservation));
 
+  // A new run's first frame is read while the journal's header hashes every input file.
+  LoopSources sources = measure_sources(s, o, cm, frame_metrics);
+  if (!o.resume) {
+    for (auto* list : {&sources.variants, &sources.references})
+      for (auto& source : *list) source->read_ahead(0);
+    sources.motion->read_ahead(0);
+  }
   const fs::path out_dir(o.out_dir);
   fs::create_directories(out_dir);
   std::unique_ptr<Journal> journal;
@@ -583,7 +590,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
   if (o.resume) log << "resume: " << journal->frames().size() << " frame record(s) done\n";
   ImageWriter images(out_dir, plan, cm);
   if (work.last_frame >= 0) {
-    FrameLoop loop(plan, measure_sources(s, o, cm, frame_metrics), &frame_metrics, log);
+    FrameLoop loop(plan, std::move(sources), &frame_metrics, log);
     loop.run(work, {journal.get(), &images});
   }
   return write_measure_outputs(s, o, plan, *journal, images, cm, out_dir, log);

@@ -19,11 +19,14 @@ class ReadAhead {
     T value = pending_k_ == k ? pending_.get() : read(k);
     if (pending_.valid()) pending_.wait();
     pending_k_ = -1;
-    if (k + 1 < count) {
-      pending_ = std::async(std::launch::async, read, k + 1);
-      pending_k_ = k + 1;
-    }
+    if (k + 1 < count) start(k + 1, read);
     return value;
+  }
+  template <class Read>
+  void start(int k, Read read) {
+    if (pending_.valid()) pending_.wait();
+    pending_ = std::async(std::launch::async, read, k);
+    pending_k_ = k;
   }
 
  private:
@@ -46,12 +49,14 @@ class FileSequence final : public ColourSource {
   FileSequence(const FrameFiles& files, const metrics::ColorManager& cm, const std::string& space)
       : files_(files), cm_(cm), space_(space) {}
   SourceFrame frame(int k) override {
-    return ahead_.get(k, int(files_.paths.size()), [this](int j) {
-      return from_colour_frame(read_colour_frame(files_, size_t(j), cm_, space_), files_.paths[size_t(j)]);
-    });
+    return ahead_.get(k, int(files_.paths.size()), [this](int j) { return read(size_t(j)); });
   }
+  void read_ahead(int k) override { ahead_.start(k, [this](int j) { return read(size_t(j)); }); }
 
  private:
+  SourceFrame read(size_t k) const {
+    return from_colour_frame(read_colour_frame(files_, k, cm_, space_), files_.paths[k]);
+  }
   const FrameFiles files_;
   const metrics::ColorManager& cm_;
   const std::string space_;
@@ -82,6 +87,7 @@ class FileReference final : public ColourSource {
   SourceFrame frame(int k) override {
     return ahead_.get(k, int(files_.paths.size()), [this](int j) { return read(size_t(j)); });
   }
+  void read_ahead(int k) override { ahead_.start(k, [this](int j) { return read(size_t(j)); }); }
 
  private:
   SourceFrame read(size_t k) const {
@@ -134,14 +140,18 @@ class FileMotion final : public MotionSource {
     pending_k_ = -1;
     last_k_ = k;
     forward_ = v.forward;
-    if (k + 1 < int(vectors_.paths.size())) {
-      pending_ = std::async(std::launch::async, [this, k, f = forward_] { return read(size_t(k) + 1, f); });
-      pending_k_ = k + 1;
-    }
+    if (k + 1 < int(vectors_.paths.size())) start(k + 1, forward_);
     return std::move(v.m);
   }
+  void read_ahead(int k) override { start(k, nullptr); }
 
  private:
+  void start(int k, std::shared_ptr<const Image> before) {
+    if (pending_.valid()) pending_.wait();
+    pending_ = std::async(std::launch::async, [this, k, before] { return read(size_t(k), before); });
+    pending_k_ = k;
+  }
+
   VectorFrame read(size_t k, const std::shared_ptr<const Image>& prev_forward) const {
     VectorFrame out;
     Image raw = read_frame_channels(vectors_.paths[k], vectors_.channels);

@@ -47,6 +47,9 @@ class ColourSource {
   virtual ~ColourSource() = default;
   virtual SourceFrame frame(int k) = 0;
   virtual int samples_per_pixel() const { return 0; }  // 0: read, not rendered
+  // Starts reading frame k now, for a source that reads ahead (the run's first frame, while the journal
+  // is opened).
+  virtual void read_ahead(int /*k*/) {}
 };
 
 // The motion of frame k in glintlab's convention (4 channels: the vector to the previous frame in
@@ -63,6 +66,7 @@ class MotionSource {
   // source that estimates the motion from the images; null where needs_base() is false.
   virtual MotionFrame frame(int k, const std::shared_ptr<const Image>& base) = 0;
   virtual bool needs_base() const { return false; }
+  virtual void read_ahead(int /*k*/) {}  // as ColourSource::read_ahead
 };
 
 }  // namespace glintlab

@@ -258,27 +258,16 @@ json identity(const json& d) {
 }  // namespace
 
 int tune(const TuneOptions& o, std::ostream& log) {
-  std::string file;
-  json experiment;
-  try {
-    file = resolve_experiment_path(o.experiment);
-    experiment = read_json_file(file);
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  }
+  const std::string file = resolve_experiment_path(o.experiment);  // bad input: run_guarded, the caller's
+  const json experiment = read_json_file(file);
   const std::string name = experiment.is_object() ? experiment.value("name", std::string()) : std::string();
   const fs::path dir = o.study_dir.empty() ? fs::path(results_path("tune")) / (name + "-" + o.base)
                                            : fs::path(o.study_dir);
   json def;
   try {
     def = tune_definition(o, experiment, file);
-  } catch (const ConfigError& e) {
-    log << "error: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const json::exception& e) {
-    log << "error: tune: " << file << ": " << e.what() << "\n";
-    return kExitBadInput;
+  } catch (const json::exception& e) {  // a value of the wrong type: the file's fault, named
+    throw ConfigError("tune: " + file + ": " + e.what());
   }
   std::error_code ec;
   fs::create_directories(dir, ec);
