@@ -185,7 +185,7 @@ class EstimatedMotion final : public MotionSource {
   bool needs_base() const override { return true; }
   MotionFrame frame(int k, const std::shared_ptr<const Image>& base) override {
     MotionFrame m;
-    if (k > 0 && k == prev_k_ + 1 && prev_) {
+    if (k > 0 && k == prev_k_ + 1 && prev_ && base) {
       metrics::FlowOptions flow;
       flow.channel = 1;  // Y of XYZ
       flow.forward_backward = true;
