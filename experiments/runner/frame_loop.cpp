@@ -21,7 +21,7 @@ const double kNan = std::nan("");
 // A frame with NaN, Inf or negative pixels measures nothing: every metric but the pixel counts is NaN.
 void void_metrics(metrics::NamedValues& values) {
   for (auto& [name, value] : values)
-    if (name.size() < 3 || name.compare(name.size() - 3, 3, "_px") != 0) value = kNan;
+    if (!is_pixel_count(name)) value = kNan;
 }
 
 std::string defect_text(const metrics::PixelScan& s) {

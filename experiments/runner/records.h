@@ -50,6 +50,12 @@ struct FrameRecord {
   const Image* image = nullptr;           // scene-linear RGBA
 };
 
+// A metric named *_px counts pixels (NaN, Inf, negative, disoccluded, valid): a count column, and the
+// values a frame keeps where its other metrics are void.
+inline bool is_pixel_count(const std::string& metric) {
+  return metric.size() > 3 && metric.compare(metric.size() - 3, 3, "_px") == 0;
+}
+
 // JSON of a record without its image (the journal's lines). Non-finite
 // numbers are written as strings ("nan", "inf", "-inf") so that they survive.
 nlohmann::json to_json(const FrameRecord& r);

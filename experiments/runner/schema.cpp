@@ -79,7 +79,7 @@ FrameSchema::FrameSchema(const std::vector<std::string>& metric_names, const std
   for (const char* n : {"nan_px", "inf_px", "negative_px"}) add(n, false, true);
   add("nonfinite_pixels", true, true);
   add("negative_pixels", true, true);
-  for (const auto& m : metric_names) add(m, true, m.size() > 3 && m.compare(m.size() - 3, 3, "_px") == 0);
+  for (const auto& m : metric_names) add(m, true, is_pixel_count(m));
   if (!metric_names.empty()) add("reference_cached", false, true);  // 1: the reference frame came from the cache
   for (const auto& m : floor_names) add(kFloorPrefix + m, false, false);  // summary.json: references[].floor
 }
