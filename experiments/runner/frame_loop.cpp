@@ -83,8 +83,8 @@ Truth FrameLoop::Impl::truth(int k, size_t r, SourceFrame f, const WorkSchedule&
   rec.gpu_ms = f.gpu_ms;
   if (fm && f.half_a && f.half_b) {  // the noise floor: every metric of half B against half A, along the motion
     if (k == 0 || clock.cut || !work.reference[r][kk - 1]) half_trackers[r].reset();
-    const metrics::FrameMetrics::Reference a = f.half_a_prepared ? *f.half_a_prepared : fm->prepare(f.half_a, false);
-    rec.halves_metrics = fm->measure(*f.half_b, a, motion.motion, half_trackers[r]);
+    if (!f.half_a_prepared) f.half_a_prepared = fm->prepare(f.half_a, false);
+    rec.halves_metrics = fm->measure(*f.half_b, *f.half_a_prepared, motion.motion, half_trackers[r]);
     t.floor = metrics::noise_floor(rec.halves_metrics);
     rec.half_a = f.half_a.get();
     rec.half_b = f.half_b.get();
@@ -203,7 +203,7 @@ void FrameLoop::run(const WorkSchedule& work, const std::vector<RecordSink*>& si
 
     // ---- the motion check on the base sequence's own change; without a truth, each variant's own view
     std::shared_ptr<const metrics::FlickerReference> own0;
-    if (first_variant && m.fm) own0 = std::make_shared<const metrics::FlickerReference>(metrics::flicker_reference(*first_variant->image));
+    if (first_variant && m.fm && work.measure[0][kk]) own0 = std::make_shared<const metrics::FlickerReference>(metrics::flicker_reference(*first_variant->image));
     metrics::MotionExplained me;
     if (m.sources.check_motion && work.motion[kk]) {
       const auto base = !truths.empty() && truths[0] ? truths[0]->prepared->flicker : own0;

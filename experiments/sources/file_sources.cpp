@@ -3,23 +3,23 @@
 #include "metrics/optical_flow.h"
 
 #include <cmath>
+#include <functional>
 #include <future>
 
 namespace glintlab {
 
 namespace {
 
-// Reads frame k + 1 on a thread of its own as soon as frame k is handed out; a frame other than the
-// one read ahead is read at once.
+// One frame read on a thread of its own, ahead of the loop's asking for it: take(k) gives frame k, the
+// one read ahead where it is k, else reads it at once (a frame read ahead and not asked for is dropped).
 template <class T>
 class ReadAhead {
  public:
   template <class Read>
-  T get(int k, int count, Read read) {
+  T take(int k, Read read) {
     T value = pending_k_ == k ? pending_.get() : read(k);
     if (pending_.valid()) pending_.wait();
     pending_k_ = -1;
-    if (k + 1 < count) start(k + 1, read);
     return value;
   }
   template <class Read>
@@ -44,25 +44,6 @@ SourceFrame from_colour_frame(ColourFrame&& cf, const std::string& path) {
   return f;
 }
 
-class FileSequence final : public ColourSource {
- public:
-  FileSequence(const FrameFiles& files, const metrics::ColorManager& cm, const std::string& space)
-      : files_(files), cm_(cm), space_(space) {}
-  SourceFrame frame(int k) override {
-    return ahead_.get(k, int(files_.paths.size()), [this](int j) { return read(size_t(j)); });
-  }
-  void read_ahead(int k) override { ahead_.start(k, [this](int j) { return read(size_t(j)); }); }
-
- private:
-  SourceFrame read(size_t k) const {
-    return from_colour_frame(read_colour_frame(files_, k, cm_, space_), files_.paths[k]);
-  }
-  const FrameFiles files_;
-  const metrics::ColorManager& cm_;
-  const std::string space_;
-  ReadAhead<SourceFrame> ahead_;
-};
-
 Image mean_of_halves(const Image& a, const Image& b) {
   Image m = a;
   for (size_t i = 0; i < m.data.size(); ++i) m.data[i] = 0.5f * (a.data[i] + b.data[i]);
@@ -79,17 +60,23 @@ metrics::PixelScan combined_scan(const metrics::PixelScan& a, const metrics::Pix
   return s;
 }
 
-class FileReference final : public ColourSource {
+// A colour sequence, or a truth (in two halves where `half_b` is given), read ahead.
+class FileColour final : public ColourSource {
  public:
-  FileReference(const FrameFiles& files, const std::optional<FrameFiles>& half_b, const metrics::ColorManager& cm,
+  FileColour(const FrameFiles& files, const std::optional<FrameFiles>& half_b, const metrics::ColorManager& cm,
                 const std::string& space, const metrics::FrameMetrics* prepare_with, bool several)
       : files_(files), half_b_(half_b), cm_(cm), space_(space), fm_(prepare_with), several_(several) {}
   SourceFrame frame(int k) override {
-    return ahead_.get(k, int(files_.paths.size()), [this](int j) { return read(size_t(j)); });
+    SourceFrame f = ahead_.take(k, reader());
+    if (k + 1 < int(files_.paths.size())) ahead_.start(k + 1, reader());
+    return f;
   }
-  void read_ahead(int k) override { ahead_.start(k, [this](int j) { return read(size_t(j)); }); }
+  void read_ahead(int k) override { ahead_.start(k, reader()); }
 
  private:
+  std::function<SourceFrame(int)> reader() const {
+    return [this](int j) { return read(size_t(j)); };
+  }
   SourceFrame read(size_t k) const {
     ColourFrame a = read_colour_frame(files_, k, cm_, space_);
     if (!half_b_) {
@@ -134,22 +121,18 @@ class FileMotion final : public MotionSource {
   MotionFrame frame(int k, const std::shared_ptr<const Image>&) override {
     // Frame k's disocclusion reads frame k - 1's vectors to the next frame: frames are read in order,
     // the next one as soon as this one is (with this one's forward vectors).
-    std::shared_ptr<const Image> before = k == last_k_ + 1 ? forward_ : nullptr;
-    VectorFrame v = pending_k_ == k ? pending_.get() : read(size_t(k), before);
-    if (pending_.valid()) pending_.wait();
-    pending_k_ = -1;
+    VectorFrame v = ahead_.take(k, reader(k == last_k_ + 1 ? forward_ : nullptr));
     last_k_ = k;
     forward_ = v.forward;
-    if (k + 1 < int(vectors_.paths.size())) start(k + 1, forward_);
+    if (k + 1 < int(vectors_.paths.size())) ahead_.start(k + 1, reader(forward_));
     return std::move(v.m);
   }
-  void read_ahead(int k) override { start(k, nullptr); }
+  void read_ahead(int k) override { ahead_.start(k, reader(nullptr)); }
 
  private:
-  void start(int k, std::shared_ptr<const Image> before) {
-    if (pending_.valid()) pending_.wait();
-    pending_ = std::async(std::launch::async, [this, k, before] { return read(size_t(k), before); });
-    pending_k_ = k;
+  // Reads a frame whose predecessor's vectors to the next frame are `before`.
+  std::function<VectorFrame(int)> reader(std::shared_ptr<const Image> before) const {
+    return [this, before](int j) { return read(size_t(j), before); };
   }
 
   VectorFrame read(size_t k, const std::shared_ptr<const Image>& prev_forward) const {
@@ -174,8 +157,8 @@ class FileMotion final : public MotionSource {
   const std::optional<ChannelFiles> depth_;
   const MotionConvention convention_;
   const MotionChannels channels_;
-  std::future<VectorFrame> pending_;
-  int pending_k_ = -1, last_k_ = -2;
+  ReadAhead<VectorFrame> ahead_;
+  int last_k_ = -2;
   std::shared_ptr<const Image> forward_;
 };
 
@@ -209,13 +192,13 @@ class EstimatedMotion final : public MotionSource {
 
 std::unique_ptr<ColourSource> file_sequence(const FrameFiles& files, const metrics::ColorManager& cm,
                                             const std::string& space) {
-  return std::make_unique<FileSequence>(files, cm, space);
+  return std::make_unique<FileColour>(files, std::nullopt, cm, space, nullptr, false);
 }
 
 std::unique_ptr<ColourSource> file_reference(const FrameFiles& files, const std::optional<FrameFiles>& half_b,
                                              const metrics::ColorManager& cm, const std::string& space,
                                              const metrics::FrameMetrics* prepare_with, bool several) {
-  return std::make_unique<FileReference>(files, half_b, cm, space, prepare_with, several);
+  return std::make_unique<FileColour>(files, half_b, cm, space, prepare_with, several);
 }
 
 std::unique_ptr<MotionSource> file_motion(const ChannelFiles& vectors, const std::optional<ChannelFiles>& depth,
