@@ -145,24 +145,37 @@ py::tuple read_sequence(const std::string& text, const std::string& layer) {
   return py::make_tuple(to_array(std::move(all), {t, h, w, 3}), numbers);
 }
 
-// T x H x W x C float32 as numbered 32-bit float OpenEXR frames `folder`/frame_0000.exr ... with the
-// given channel names; the SEQ that names them.
-std::string write_frames(const FloatArray& a, const std::string& folder, const std::vector<std::string>& names) {
-  const int t = int(a.shape(0)), h = int(a.shape(1)), w = int(a.shape(2)), c = int(a.shape(3));
-  py::gil_scoped_release unlocked;
-  std::filesystem::create_directories(folder);
-  const std::size_t n = std::size_t(h) * std::size_t(w) * std::size_t(c);
-  for (int k = 0; k < t; ++k) {
-    Image frame = Image::unfilled(w, h, c);
-    std::copy(a.data() + std::size_t(k) * n, a.data() + std::size_t(k + 1) * n, frame.data.begin());
-    char name[32];
-    std::snprintf(name, sizeof name, "/frame_%04d.exr", k);
-    metrics::write_exr_data(folder + name, frame, false, names);
-  }
-  return folder + "/frame_%04d.exr";
+// A T x H x W x C float32 C-contiguous array as frames in memory (experiments/sources/sequence.h),
+// read in place: `keep` holds the array until the run is done. `given`: None, or (array, name, channel
+// names), the names as a file of such frames would have them (glintlab/__init__.py).
+std::shared_ptr<const FrameArray> frame_array(const py::object& given, std::vector<FloatArray>& keep) {
+  if (given.is_none()) return nullptr;
+  const auto t = given.cast<py::tuple>();
+  keep.push_back(t[0].cast<FloatArray>());
+  const FloatArray& a = keep.back();
+  auto out = std::make_shared<FrameArray>();
+  out->name = t[1].cast<std::string>();
+  out->channels = t[2].cast<std::vector<std::string>>();
+  if (a.ndim() != 4 || a.shape(3) != py::ssize_t(out->channels.size()))
+    throw std::invalid_argument("measure: '" + out->name + "': an array of T x H x W x " +
+                                std::to_string(out->channels.size()) + " allowed");
+  out->data = a.data();
+  out->frames = int(a.shape(0));
+  out->height = int(a.shape(1));
+  out->width = int(a.shape(2));
+  return out;
 }
 
-py::tuple measure(const MeasureOptions& options) {
+// `glintlab measure` with any input given as frames in memory: `tests` holds one entry (None or an
+// array as frame_array takes it) for each of options.tests.
+py::tuple measure(MeasureOptions options, const py::object& reference, const py::list& tests, const py::object& motion,
+                  const py::object& depth) {
+  std::vector<FloatArray> keep;
+  options.reference_array = frame_array(reference, keep);
+  options.motion_array = frame_array(motion, keep);
+  options.depth_array = frame_array(depth, keep);
+  if (tests.size() != options.tests.size()) throw std::invalid_argument("measure: one array entry per test");
+  for (std::size_t i = 0; i < options.tests.size(); ++i) options.tests[i].array = frame_array(tests[i], keep);
   std::ostringstream log;
   int code = 0;
   {
@@ -306,7 +319,6 @@ PYBIND11_MODULE(_core, m) {
   m.def("_last_compare_pixels", [] { return last_compare_pixels; });
   m.def("read_image", &read_image);
   m.def("read_sequence", &read_sequence);
-  m.def("write_frames", &write_frames);
   m.def("measure", &measure);
   m.def("run", &run);
   m.def("check", &check);

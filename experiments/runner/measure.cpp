@@ -68,6 +68,24 @@ ChannelFiles resolve(const std::string& what, const std::string& text, const std
   return s;
 }
 
+// The same for frames in memory: `count` frames, frame k the run's frame k.
+ChannelFiles resolve(const std::string& what, std::shared_ptr<const FrameArray> array, size_t count) {
+  if (size_t(array->frames) != count)
+    throw ConfigError(what + ": '" + array->name + "' has " + std::to_string(array->frames) +
+                      " frame(s) but the run has " + std::to_string(count) + " (an array's frame k is the run's frame k)");
+  ChannelFiles s;
+  s.what = what;
+  s.seq.text = array->name;
+  for (size_t k = 0; k < count; ++k) s.paths.push_back(array_frame_name(*array, k));
+  s.array = std::move(array);
+  return s;
+}
+
+// What a source's journal and summary entries call it: its SEQ, or its array's name.
+std::string source_text(const std::string& seq, const std::shared_ptr<const FrameArray>& array) {
+  return array ? array->name : seq;
+}
+
 // The frames to measure: the base sequence's numbers within --frames, with no gap.
 std::vector<int> select_numbers(const std::string& what, const std::string& text, int first, int last) {
   const SequenceSpec seq = parse_sequence(text, what);
@@ -90,7 +108,7 @@ std::vector<int> select_numbers(const std::string& what, const std::string& text
 // Every frame of a source: one size, the channels present, within the pixel limit.
 void check_headers(const ChannelFiles& s, int* width, int* height) {
   for (const auto& path : s.paths) {
-    const FrameHeader h = read_frame_header(path);
+    const FrameHeader h = s.array ? array_header(*s.array) : read_frame_header(path);
     if (*width == 0) *width = h.width, *height = h.height;
     if (h.width != *width || h.height != *height)
       throw ConfigError(s.what + ": '" + path + "' is " + std::to_string(h.width) + "x" + std::to_string(h.height) +
@@ -181,6 +199,13 @@ struct Setup {
 // The options alone, before any file is opened; their motion convention. ConfigError naming the option.
 MotionConvention checked_options(const MeasureOptions& o) {
   if (o.tests.empty()) throw ConfigError("measure: give at least one --test [NAME=]SEQ");
+  const bool arrays = o.reference_array || o.motion_array || o.depth_array ||
+                      std::any_of(o.tests.begin(), o.tests.end(), [](const MeasureSource& t) { return bool(t.array); });
+  if (arrays && (o.first != INT_MIN || o.last != INT_MAX))
+    throw ConfigError("--frames: not allowed with frames in memory (an array's frame k is the run's frame k: "
+                      "give the frames to measure)");
+  if (arrays && !o.motion_from.empty())
+    throw ConfigError("--motion-from: not allowed with frames in memory; give the vectors as their own array");
   if (o.tests.size() > 64) throw ConfigError("measure: at most 64 --test sequences");
   if (!(o.fps >= kMinFps && o.fps <= kMaxFps)) {
     std::ostringstream msg;
@@ -190,15 +215,15 @@ MotionConvention checked_options(const MeasureOptions& o) {
   }
   if (o.first > o.last)
     throw ConfigError("--frames: FIRST " + std::to_string(o.first) + " is after LAST " + std::to_string(o.last));
-  if (!o.motion.empty() && !o.motion_from.empty())
+  if ((!o.motion.empty() || o.motion_array) && !o.motion_from.empty())
     throw ConfigError("measure: give --motion SEQ or --motion-from, not both");
   if (!o.motion_from.empty() && o.motion_from != "reference" && o.motion_from != "test")
     throw ConfigError("--motion-from: '" + o.motion_from + "' is not allowed (reference or test)");
-  if (!o.reference_b.empty() && o.reference.empty())
+  if (!o.reference_b.empty() && o.reference.empty() && !o.reference_array)
     throw ConfigError("--reference-b: the reference's second half needs its first: give --reference SEQ too");
   if (o.motion_from == "reference" && o.reference.empty())
     throw ConfigError("--motion-from reference: there is no --reference");
-  if (!o.depth.empty() && o.motion.empty() && o.motion_from.empty())
+  if ((!o.depth.empty() || o.depth_array) && o.motion.empty() && !o.motion_array && o.motion_from.empty())
     throw ConfigError("--depth: depth is for disocclusion along given vectors; give --motion or --motion-from too "
                       "(estimated flow uses forward-backward consistency)");
   auto c = enum_from_name(kMotionConventionNames, o.motion_convention);
@@ -213,32 +238,42 @@ MotionConvention checked_options(const MeasureOptions& o) {
 void open_colour_sequences(const MeasureOptions& o, const metrics::ColorManager& cm, std::ostream& log, Plan& p) {
   // ---- the frames: numbers from the reference (or the first test), then every sequence resolved
   const bool range = o.first != INT_MIN || o.last != INT_MAX;
-  const std::string base = o.reference.empty() ? o.tests[0].seq : o.reference;
-  p.numbers = select_numbers(o.reference.empty() ? "--test" : "--reference", base, o.first, o.last);
-  if (p.numbers.size() > size_t(kMaxSequenceFrames))
-    throw ConfigError("measure: more than " + std::to_string(kMaxSequenceFrames) + " frames");
-  auto colour_source = [&](const std::string& what, const std::string& text, const std::string& space) {
-    FrameFiles f = open_colour_sequence(text, p.numbers, space.empty() ? o.space : space, cm, "measure: " + what, &p.width, &p.height, log);
+  const bool has_reference = !o.reference.empty() || o.reference_array;
+  const std::string base = has_reference ? o.reference : o.tests[0].seq;
+  const std::shared_ptr<const FrameArray>& base_array = has_reference ? o.reference_array : o.tests[0].array;
+  if (base_array) {  // frames in memory are numbered from 0
+    for (int k = 0; k < base_array->frames; ++k) p.numbers.push_back(k);
+  } else {
+    p.numbers = select_numbers(has_reference ? "--reference" : "--test", base, o.first, o.last);
+  }
+  if (p.numbers.empty() || p.numbers.size() > size_t(kMaxSequenceFrames))
+    throw ConfigError("measure: " + std::to_string(p.numbers.size()) + " frames; allowed: 1 to " +
+                      std::to_string(kMaxSequenceFrames));
+  auto colour_source = [&](const std::string& what, const std::string& text, const std::string& space,
+                           const std::shared_ptr<const FrameArray>& array) {
+    const std::string in_space = space.empty() ? o.space : space;
+    if (array) return open_colour_array(array, p.numbers.size(), in_space, cm, "measure: " + what, &p.width, &p.height, log);
+    FrameFiles f = open_colour_sequence(text, p.numbers, in_space, cm, "measure: " + what, &p.width, &p.height, log);
     if (!range) {  // without --frames, every sequence has exactly the frames of the base one
       const auto all = list_frames(parse_sequence(text, what), what);
       if (all.size() != p.numbers.size())
         throw ConfigError(what + ": '" + text + "' has " +
                           frame_count_text(all.size(), all.front().number, all.back().number) + ", but " +
-                          (o.reference.empty() ? "the first test" : "the reference") + " has " +
+                          (has_reference ? "the reference" : "the first test") + " has " +
                           frame_count_text(p.numbers.size(), p.numbers.front(), p.numbers.back()) +
                           "; give --frames FIRST:LAST to measure a common range");
     }
     return f;
   };
-  if (!o.reference.empty()) p.reference = colour_source("--reference", o.reference, o.reference_space);
-  if (!o.reference_b.empty()) p.reference_b = colour_source("--reference-b", o.reference_b, o.reference_space);
+  if (has_reference) p.reference = colour_source("--reference", o.reference, o.reference_space, o.reference_array);
+  if (!o.reference_b.empty()) p.reference_b = colour_source("--reference-b", o.reference_b, o.reference_space, nullptr);
   std::set<std::string> names;
   for (const auto& t : o.tests) {
-    const std::string name = t.name.empty() ? default_name(parse_sequence(t.seq, "--test")) : t.name;
+    const std::string name = !t.name.empty() ? t.name : t.array ? "test" : default_name(parse_sequence(t.seq, "--test"));
     check_name(name, "--test");
     if (!names.insert(name).second)
       throw ConfigError("--test: two tests are named '" + name + "'; name them: --test NAME=SEQ");
-    p.tests.push_back(colour_source("--test " + name, t.seq, t.space));
+    p.tests.push_back(colour_source("--test " + name, t.seq, t.space, t.array));
     p.test_names.push_back(name);
   }
 }
@@ -251,10 +286,11 @@ void resolve_motion(const MeasureOptions& o, Setup& s) {
   const std::string colour_of_motion = o.motion_from == "reference" ? o.reference
                                        : o.motion_from == "test"    ? o.tests[0].seq
                                                                     : std::string();
-  if (!o.motion.empty() || !colour_of_motion.empty()) {
+  if (!o.motion.empty() || o.motion_array || !colour_of_motion.empty()) {
     const std::string what = !colour_of_motion.empty() ? "--motion-from " + o.motion_from : "--motion";
-    ChannelFiles m = resolve(what, colour_of_motion.empty() ? o.motion : colour_of_motion, p.numbers);
-    const FrameHeader h = read_frame_header(m.paths[0]);
+    ChannelFiles m = o.motion_array ? resolve(what, o.motion_array, p.numbers.size())
+                                    : resolve(what, colour_of_motion.empty() ? o.motion : colour_of_motion, p.numbers);
+    const FrameHeader h = m.array ? array_header(*m.array) : read_frame_header(m.paths[0]);
     std::string layer = m.seq.layer;
     if (!colour_of_motion.empty()) {
       // Only a layer named for vectors: a colour layer's R and G are never read as motion.
@@ -275,15 +311,15 @@ void resolve_motion(const MeasureOptions& o, Setup& s) {
     m.channels.insert(m.channels.end(), p.motion_channels.distances.begin(), p.motion_channels.distances.end());
     p.motion = std::move(m);
     motion_kind = "exact";
-    motion_source = p.motion->what + " " + (o.motion.empty() ? p.motion->seq.text : o.motion) +
+    motion_source = p.motion->what + " " + (colour_of_motion.empty() ? source_text(o.motion, o.motion_array) : p.motion->seq.text) +
                     (layer.empty() ? std::string() : " (layer " + layer + ")");
   } else {
     motion_kind = "estimated";
     motion_source = std::string("optical flow (OpenCV DIS) of ") + (p.reference ? "the reference" : "the first test");
   }
-  if (!o.depth.empty()) {
-    ChannelFiles d = resolve("--depth", o.depth, p.numbers);
-    const FrameHeader h = read_frame_header(d.paths[0]);
+  if (!o.depth.empty() || o.depth_array) {
+    ChannelFiles d = o.depth_array ? resolve("--depth", o.depth_array, p.numbers.size()) : resolve("--depth", o.depth, p.numbers);
+    const FrameHeader h = d.array ? array_header(*d.array) : read_frame_header(d.paths[0]);
     auto z = find_channels(h, d.seq.layer, {{"Z", "z", "Y", "R", "depth", "Depth", "Depth.Z"}});
     if (z[0].empty())
       throw ConfigError("--depth: '" + d.paths[0] + "' has no depth channel (Z, Y or R" +
@@ -323,15 +359,15 @@ void describe_run(const MeasureOptions& o, const std::vector<std::string>& metri
   // ---- what the run is: options and the content of every file (the journal header)
   nlohmann::json tests = nlohmann::json::array();
   for (size_t i = 0; i < o.tests.size(); ++i)
-    tests.push_back({{"name", p.test_names[i]}, {"frames", o.tests[i].seq}, {"space", p.tests[i].space}});
-  source = {{"reference", o.reference},
+    tests.push_back({{"name", p.test_names[i]}, {"frames", p.tests[i].seq}, {"space", p.tests[i].space}});
+  source = {{"reference", source_text(o.reference, o.reference_array)},
             {"reference_space", p.reference ? p.reference->space : ""},
             {"reference_b", o.reference_b},
             {"tests", tests},
-            {"motion", o.motion},
+            {"motion", source_text(o.motion, o.motion_array)},
             {"motion_from", o.motion_from},
             {"motion_convention", o.motion_convention},
-            {"depth", o.depth},
+            {"depth", source_text(o.depth, o.depth_array)},
             {"metrics", metric_list},
             {"frames", {p.numbers.front(), p.numbers.back()}},
             {"fps", o.fps},
@@ -348,7 +384,7 @@ void describe_run(const MeasureOptions& o, const std::vector<std::string>& metri
   spec.metric_options.pooled = selected.pooled;
   spec.reference.enabled = bool(p.reference);
   spec.reference.grid = 0;
-  spec.reference.frames = o.reference;
+  spec.reference.frames = source_text(o.reference, o.reference_array);
   spec.reference.frames_b = o.reference_b;
   spec.output.exr = false;
   spec.output.png = o.report;  // previews are for the report: a CI job with --no-report writes none
@@ -360,7 +396,7 @@ void describe_run(const MeasureOptions& o, const std::vector<std::string>& metri
   for (size_t i = 0; i < p.tests.size(); ++i) {
     VariantSpec v;
     v.name = p.test_names[i];
-    v.frames = o.tests[i].seq;
+    v.frames = p.tests[i].seq;
     spec.variants.push_back(v);
   }
   spec.source = source;
@@ -393,6 +429,10 @@ nlohmann::json journal_header(const Setup& s, const metrics::ColorManager& cm) {
   const Plan& p = s.p;
   nlohmann::json hashes = nlohmann::json::object();
   auto add_hashes = [&](const auto& files) {
+    if (files.array) {
+      hashes[files.array->name] = array_content_hash(*files.array);
+      return;
+    }
     for (const auto& path : files.paths)
       if (!hashes.contains(path)) hashes[path] = file_content_hash(path);
   };

@@ -10,15 +10,19 @@
 // Frames of all sequences are matched by frame number; every file is checked
 // from its header (size, channels, pixel count) and hashed before a pixel is
 // measured, and the hashes go into the journal header, so a resume with other
-// files is refused.
+// files is refused. Any input may be frames in memory instead (FrameArray),
+// hashed likewise.
 #pragma once
 
 #include <climits>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
 
 namespace glintlab {
+
+struct FrameArray;  // experiments/sources/sequence.h
 
 constexpr double kMinFps = 1e-3, kMaxFps = 1000;  // --fps: one frame in 1000 s to 1000 frames a second
 
@@ -26,6 +30,7 @@ struct MeasureSource {
   std::string name;  // the variant name ("" = from the sequence's path)
   std::string seq;   // SEQ (experiments/sources/sequence.h)
   std::string space;  // its OCIO space ("" = MeasureOptions::space)
+  std::shared_ptr<const FrameArray> array;  // its frames in memory instead of `seq` (read in place)
 };
 
 struct MeasureOptions {
@@ -53,6 +58,10 @@ struct MeasureOptions {
   std::string ocio_config;                  // "" = $OCIO, else the shipped config
   bool resume = false;
   bool report = true;
+  // Frames in memory instead of files (the Python module's arrays; sequence.h FrameArray): the reference
+  // (RGB, or Y), the vectors (channels named as the convention's files name them) and the depth (Z), each
+  // instead of its SEQ. An array's frame k is the run's frame k; with any array, --frames is not allowed.
+  std::shared_ptr<const FrameArray> reference_array, motion_array, depth_array;
 };
 
 // Exit codes as every command (experiments/cli/exit_codes.h): 0, 1 when a

@@ -137,13 +137,13 @@ class FileMotion final : public MotionSource {
 
   VectorFrame read(size_t k, const std::shared_ptr<const Image>& prev_forward) const {
     VectorFrame out;
-    Image raw = read_frame_channels(vectors_.paths[k], vectors_.channels);
+    Image raw = read_sequence_channels(vectors_.paths, vectors_.array.get(), k, vectors_.channels);
     if (is_flicker_motion(convention_, channels_)) {
       out.m.motion = std::move(raw);  // glintlab's own four channels: already what the tracker reads
     } else {
       MotionVectors v = convert_motion(convention_, raw, channels_);
       std::optional<Image> depth;
-      if (depth_) depth = read_frame_channels(depth_->paths[k], depth_->channels);
+      if (depth_) depth = read_sequence_channels(depth_->paths, depth_->array.get(), k, depth_->channels);
       out.m.motion = flicker_motion(v, depth ? &*depth : nullptr, prev_forward.get());
       if (v.forward) out.forward = std::make_shared<const Image>(std::move(*v.forward));
     }

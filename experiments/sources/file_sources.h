@@ -2,7 +2,8 @@
 // sequence, a truth given as one sequence or as two independent halves, the
 // motion vectors (and depth) another renderer wrote, or optical flow where it
 // wrote none. Each decodes its next frame on a thread of its own while the
-// loop measures the current one.
+// loop measures the current one. Any of them may hold its frames in memory
+// instead (FrameArray: the Python module's arrays), read in place.
 #pragma once
 
 #include "experiments/sources/motion_convention.h"
@@ -18,12 +19,14 @@
 
 namespace glintlab {
 
-// A sequence of vectors or depth: its selected frames' files and the channels read of each.
+// A sequence of vectors or depth: its selected frames' files (or its array) and the channels read of
+// each.
 struct ChannelFiles {
   std::string what;  // for messages: "--motion", "--depth"
   SequenceSpec seq;
-  std::vector<std::string> paths;     // the selected frames, in order
+  std::vector<std::string> paths;     // the selected frames, in order (an array's frame names)
   std::vector<std::string> channels;  // what is read of each frame
+  std::shared_ptr<const FrameArray> array;  // the frames in memory; null: read from `paths`
 };
 
 // A colour sequence, each frame converted from its space into `space`.

@@ -360,11 +360,78 @@ FrameFiles open_colour_sequence(const std::string& seq, const std::vector<int>& 
   return f;
 }
 
+FrameHeader array_header(const FrameArray& a) {
+  FrameHeader h;
+  h.width = a.width;
+  h.height = a.height;
+  h.channels = a.channels;
+  return h;
+}
+
+std::string array_frame_name(const FrameArray& a, size_t k) { return a.name + ", frame " + std::to_string(k); }
+
+std::string array_content_hash(const FrameArray& a) {
+  core::ContentHash h;
+  h.add(int64_t(a.frames)).add(int64_t(a.height)).add(int64_t(a.width));
+  for (const auto& c : a.channels) h.add(c);
+  h.add(a.data, size_t(a.frames) * size_t(a.height) * size_t(a.width) * a.channels.size() * sizeof(float));
+  return h.hex();
+}
+
+Image read_sequence_channels(const std::vector<std::string>& paths, const FrameArray* array, size_t index,
+                             const std::vector<std::string>& channels, int image_channels) {
+  if (!array) return read_frame_channels(paths.at(index), channels, image_channels);
+  const int nc = std::max(image_channels, int(channels.size()));
+  Image out = Image::unfilled(array->width, array->height, nc);
+  std::vector<size_t> from;  // the array's channel of each name
+  for (const auto& c : channels) {
+    const auto it = std::find(array->channels.begin(), array->channels.end(), c);
+    if (it == array->channels.end())
+      throw ConfigError("'" + array->name + "': no channel '" + c + "'; it has: " + channel_list(array_header(*array)));
+    from.push_back(size_t(it - array->channels.begin()));
+  }
+  const size_t in_c = array->channels.size(), pixels = out.pixel_count();
+  const float* frame = array->data + index * pixels * in_c;
+  for (size_t i = 0; i < pixels; ++i) {
+    for (size_t k = 0; k < from.size(); ++k) out.data[i * size_t(nc) + k] = frame[i * in_c + from[k]];
+    for (size_t k = from.size(); k < size_t(nc); ++k) out.data[i * size_t(nc) + k] = 1.0f;
+  }
+  return out;
+}
+
+FrameFiles open_colour_array(std::shared_ptr<const FrameArray> array, size_t count, const std::string& forced,
+                             const metrics::ColorManager& cm, const std::string& what, int* width, int* height,
+                             std::ostream& log) {
+  const FrameArray& a = *array;
+  if (size_t(a.frames) != count)
+    throw ConfigError(what + ": '" + a.name + "' has " + std::to_string(a.frames) + " frame(s) but the run has " +
+                      std::to_string(count) + " (an array's frame k is the run's frame k)");
+  if (std::int64_t(a.width) * a.height > kMaxSequencePixels)
+    throw ConfigError(what + ": '" + a.name + "' has frames of " + std::to_string(a.width) + "x" +
+                      std::to_string(a.height) + ", more than " + std::to_string(kMaxSequencePixels) + " pixels");
+  if (*width == 0) *width = a.width, *height = a.height;
+  if (a.width != *width || a.height != *height)
+    throw ConfigError(what + ": '" + a.name + "' is " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                      " but the run is " + std::to_string(*width) + "x" + std::to_string(*height) +
+                      " (every frame of every sequence must have one size)");
+  FrameFiles f;
+  f.seq = a.name;
+  for (size_t k = 0; k < count; ++k) f.paths.push_back(array_frame_name(a, k));
+  f.channels = colour_channels(array_header(a), "", a.name);
+  try {
+    f.space = metrics::input_space(cm, forced, "", what, a.name, log);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(what + ": " + e.what());
+  }
+  f.array = std::move(array);
+  return f;
+}
+
 ColourFrame read_colour_frame(const FrameFiles& f, size_t index, const metrics::ColorManager& cm,
                               const std::string& to_space) {
   const auto t0 = std::chrono::steady_clock::now();
   ColourFrame out;
-  out.image = read_frame_channels(f.paths.at(index), f.channels, 4);  // R, G, B and alpha 1
+  out.image = read_sequence_channels(f.paths, f.array.get(), index, f.channels, 4);  // R, G, B and alpha 1
   out.scan = metrics::scan_pixels(out.image, 3);
   cm.convert(out.image, f.space, to_space);
   out.read_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -22,6 +22,7 @@
 #include "metrics/pixel_scan.h"
 
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -90,14 +91,37 @@ Image read_frame_channels(const std::string& path, const std::vector<std::string
 std::vector<std::string> colour_channels(const FrameHeader& header, const std::string& layer,
                                          const std::string& path);
 
-// A colour sequence ready to read: its frames' files, the channels read of each and the OCIO space
-// its values are in.
+// Frames held in memory instead of files (the Python module's numpy arrays): T x H x W x C float32,
+// C-contiguous, read in place (never copied, never written) while the run lasts. `channels` names its
+// C channels as a file's would be named (R, G, B, A; Y; X, Y; Z), so an array is read by the same
+// channel rules as a file; frame k of an array is the run's frame k.
+struct FrameArray {
+  std::string name;  // what messages and the journal call it: "array test1"
+  const float* data = nullptr;
+  int frames = 0, height = 0, width = 0;
+  std::vector<std::string> channels;
+};
+// An array's "header" (its size and channel names), as read_frame_header gives a file's.
+FrameHeader array_header(const FrameArray& a);
+// The name of frame k of an array in messages: "array test1, frame 3".
+std::string array_frame_name(const FrameArray& a, size_t k);
+// XXH3-128 of an array's shape, channel names and values: its identity in a journal header, as
+// file_content_hash is a file's.
+std::string array_content_hash(const FrameArray& a);
+
+// A colour sequence ready to read: its frames' files (or its array), the channels read of each and
+// the OCIO space its values are in.
 struct FrameFiles {
-  std::string seq;                    // as given
-  std::vector<std::string> paths;     // one per frame, in order
+  std::string seq;                    // as given (an array's name)
+  std::vector<std::string> paths;     // one per frame, in order (an array's frame names)
   std::vector<std::string> channels;  // R, G, B of the layer (or Y three times)
   std::string space;                  // OCIO colour space (canonical name)
+  std::shared_ptr<const FrameArray> array;  // the frames in memory; null: read from `paths`
 };
+// Frame `index` of a sequence: the named channels of its file, or of its array where `array` is set
+// (read_frame_channels' rules for the channels after the names).
+Image read_sequence_channels(const std::vector<std::string>& paths, const FrameArray* array, size_t index,
+                             const std::vector<std::string>& channels, int image_channels = 0);
 // The frames of `seq` with the given numbers (each must exist), every header checked (size
 // width x height, or the first frame's size when width is 0, which is then set; the channels),
 // the space: `forced` ("" = the first frame's tag, else scene_linear, said on `log`).
@@ -105,6 +129,12 @@ struct FrameFiles {
 FrameFiles open_colour_sequence(const std::string& seq, const std::vector<int>& numbers, const std::string& forced,
                                 const metrics::ColorManager& cm, const std::string& what, int* width, int* height,
                                 std::ostream& log);
+// The same for frames in memory: `count` frames of the array, every one of size width x height (set
+// from the array when width is 0), its channels those of a colour frame, its space `forced` ("" =
+// scene_linear, said on `log`). Throws ConfigError naming `what`.
+FrameFiles open_colour_array(std::shared_ptr<const FrameArray> array, size_t count, const std::string& forced,
+                             const metrics::ColorManager& cm, const std::string& what, int* width, int* height,
+                             std::ostream& log);
 // The numbers of the first `count` frames of `seq` (ConfigError when it has fewer, or a gap among them).
 std::vector<int> first_frame_numbers(const std::string& seq, int count, const std::string& what);
 

@@ -183,16 +183,16 @@ def flip(reference, test, mode="hdr", parameters=None, space=None, **more):
 
 # ---------------------------------------------------------------- sequences
 
-def _sequence(value, what, folder, channel_names):
-    """A SEQ as given, or an array written as numbered 32-bit float OpenEXR frames into `folder`
-    (lossless: the measurement reads exactly the array's float32 values); (SEQ, space)."""
+def _sequence(value, what, name, channel_names):
+    """(SEQ, space, None) for a SEQ; ("", space, (array, name, channel names)) for an array, which the
+    measurement reads in place as frames in memory, its channels named as a file's would be."""
     if _is_path(value):
-        return os.fspath(value), ""
+        return os.fspath(value), "", None
     a, space = _pixels(value, what, frames=True)
     names = channel_names(a.shape[3])
     if names is None:
         raise ValueError(f"{what}: an array with {a.shape[3]} channels is not allowed here")
-    return _core.write_frames(a, folder, names), space
+    return "", space, (a, name, names)
 
 
 def _colour_names(c):
@@ -228,19 +228,21 @@ def measure(reference, tests, motion=None, convention="pixels", depth=None, metr
     (arrays: the `pixels` convention's X, Y or R, G and the distances B, A); depth: a SEQ or
     T x H x W array; metrics: names and groups as --metrics (a list or a comma-separated string);
     fps: frames per second (default 24); out: the run folder (None: a temporary folder, removed
-    afterwards, and no report.html is written). Arrays are written as 32-bit float OpenEXR frames into OUT/inputs/ and measured
-    as those files. Returns (summary as summary.json, per-frame records as frames.csv's rows:
-    a list of dicts, numbers as floats, empty cells NaN)."""
+    afterwards, and no report.html is written). Arrays are read in place, never written to files:
+    frame k of an array is the run's frame k (numbered from 0 where the reference, or the first test
+    without one, is an array), and the journal knows an array by a hash of its values. Returns
+    (summary as summary.json, per-frame records as frames.csv's rows: a list of dicts, numbers as
+    floats, empty cells NaN)."""
     temporary = out is None
     folder = tempfile.mkdtemp(prefix="glintlab-measure-") if temporary else os.fspath(out)
     try:
-        inputs = os.path.join(folder, "inputs")
         o = _core.MeasureOptions()
         o.out_dir = folder
         o.report = not temporary  # a report in a folder about to be removed is not written
+        ref_array = motion_array = depth_array = None
         if reference is not None:
-            o.reference, o.reference_space = _sequence(reference, "measure: reference", os.path.join(inputs, "reference"),
-                                                       _colour_names)
+            o.reference, o.reference_space, ref_array = _sequence(reference, "measure: reference", "array reference",
+                                                                  _colour_names)
         if isinstance(tests, dict):
             named = list(tests.items())
         else:
@@ -248,24 +250,25 @@ def measure(reference, tests, motion=None, convention="pixels", depth=None, metr
             arrays = sum(not _is_path(t) for t in given)
             named = [("" if _is_path(t) else ("test" if arrays == 1 else f"test{i + 1}"), t)
                      for i, t in enumerate(given)]
-        sources = []
+        sources, test_arrays = [], []
         for i, (name, value) in enumerate(named):
             s = _core.MeasureSource()
             s.name = name
-            s.seq, s.space = _sequence(value, f"measure: test {name or i + 1}", os.path.join(inputs, f"test{i + 1}"),
-                                       _colour_names)
+            s.seq, s.space, array = _sequence(value, f"measure: test {name or i + 1}", f"array {name or i + 1}",
+                                              _colour_names)
             sources.append(s)
+            test_arrays.append(array)
         o.tests = sources
         if motion is not None:
-            o.motion, _ = _sequence(motion, "measure: motion", os.path.join(inputs, "motion"), _motion_names)
+            o.motion, _, motion_array = _sequence(motion, "measure: motion", "array motion", _motion_names)
         o.motion_convention = convention
         if depth is not None:
-            o.depth, _ = _sequence(depth, "measure: depth", os.path.join(inputs, "depth"), _depth_names)
+            o.depth, _, depth_array = _sequence(depth, "measure: depth", "array depth", _depth_names)
         if metrics is not None:
             o.metrics = metrics.split(",") if isinstance(metrics, str) else list(metrics)
         if fps is not None:
             o.fps = float(fps)
-        _finish(*_core.measure(o))
+        _finish(*_core.measure(o, ref_array, test_arrays, motion_array, depth_array))
         with open(os.path.join(folder, "summary.json")) as f:
             summary = json.load(f)
         return summary, _read_records(os.path.join(folder, "frames.csv"))
