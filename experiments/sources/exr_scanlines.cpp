@@ -8,8 +8,10 @@
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cstdint>
 #include <cstring>
+#include <strings.h>
 #include <string>
 #include <sys/stat.h>
 #include <vector>
@@ -410,7 +412,68 @@ std::string exr_chunk_problem(const std::string& path) {
   return "";
 }
 
-bool read_simple_exr_header(const std::string& path, SimpleExrHeader* h) {
+namespace {
+
+bool iequals(const std::string& a, const char* b) { return strcasecmp(a.c_str(), b) == 0; }
+
+// OpenImageIO 2.4's order of an OpenEXR part's channels: by layer (the name up to and including its
+// last '.'), within a layer by the rank of the names it knows (R, G, B, Y, A, Z, ... in any case;
+// X, Y, Z together where the layer has X and Y or Z: a position or a normal), then by name.
+struct ChannelRank {
+  std::string name, layer, suffix;
+  int special = 10000;
+};
+void order_as_openimageio(std::vector<std::string>& names) {
+  static const char* const kUsual[] = {"R", "Red", "G", "Green", "B", "Blue", "Y", "real", "imag", "A",
+                                       "Alpha", "AR", "RA", "AG", "GA", "AB", "BA", "Z", "Depth", "Zback"};
+  static const char* const kXyz[] = {"R", "Red", "G", "Green", "B", "Blue", "X", "Y", "Z", "real", "imag",
+                                     "A", "Alpha", "AR", "RA", "AG", "GA", "AB", "BA", "Depth", "Zback"};
+  std::vector<ChannelRank> ranks;
+  for (const auto& n : names) {
+    const size_t dot = n.rfind('.');
+    ranks.push_back({n, dot == std::string::npos ? "" : n.substr(0, dot + 1),
+                     dot == std::string::npos ? n : n.substr(dot + 1)});
+  }
+  std::sort(ranks.begin(), ranks.end(), [](const ChannelRank& a, const ChannelRank& b) { return a.layer < b.layer; });
+  for (auto begin = ranks.begin(); begin != ranks.end();) {
+    auto end = begin;
+    while (end != ranks.end() && end->layer == begin->layer) ++end;
+    auto has = [&](const char* suffix) {
+      return std::any_of(begin, end, [&](const ChannelRank& c) { return iequals(c.suffix, suffix); });
+    };
+    const bool xyz = has("X") && (has("Y") || has("Z"));
+    const char* const* table = xyz ? kXyz : kUsual;
+    const size_t known = xyz ? std::size(kXyz) : std::size(kUsual);
+    for (auto c = begin; c != end; ++c) {
+      for (size_t i = 0; i < known; ++i)
+        if (iequals(c->suffix, table[i])) {
+          c->special = int(i);
+          break;
+        }
+    }
+    std::sort(begin, end, [](const ChannelRank& a, const ChannelRank& b) {
+      return a.special != b.special ? a.special < b.special : a.suffix < b.suffix;
+    });
+    begin = end;
+  }
+  for (size_t i = 0; i < names.size(); ++i) names[i] = ranks[i].name;
+}
+
+// Luminance-chroma (Y, BY, RY[, A or Alpha], nothing else): OpenImageIO converts it to RGB.
+bool is_luminance_chroma(const std::vector<std::string>& names) {
+  auto has = [&](const char* suffix) {
+    return std::any_of(names.begin(), names.end(), [&](const std::string& n) {
+      const size_t dot = n.rfind('.');
+      return iequals(dot == std::string::npos ? n : n.substr(dot + 1), suffix);
+    });
+  };
+  if (names.size() < 3 || names.size() > 4 || !has("Y") || !has("BY") || !has("RY")) return false;
+  return names.size() == 3 || has("A") || has("Alpha");
+}
+
+}  // namespace
+
+bool read_exr_layout(const std::string& path, ExrLayout* h) {
   Context ctx;
   std::uint64_t file_size = 0;
   if (!open_exr(path, ctx, file_size)) return false;
@@ -423,7 +486,7 @@ bool read_simple_exr_header(const std::string& path, SimpleExrHeader* h) {
       exr_get_data_window(ctx.c, 0, &dw) != EXR_ERR_SUCCESS ||
       exr_get_display_window(ctx.c, 0, &disp) != EXR_ERR_SUCCESS || dw.min.x != disp.min.x ||
       dw.min.y != disp.min.y || dw.max.x != disp.max.x || dw.max.y != disp.max.y || dw.min.x != 0 || dw.min.y != 0 ||
-      exr_get_channels(ctx.c, 0, &list) != EXR_ERR_SUCCESS)
+      exr_get_channels(ctx.c, 0, &list) != EXR_ERR_SUCCESS || list->num_channels < 1)
     return false;
   const std::int64_t w = std::int64_t(dw.max.x) + 1, hh = std::int64_t(dw.max.y) + 1;
   if (w < 1 || hh < 1 || w * hh > metrics::kMaxImagePixels) return false;
@@ -434,16 +497,7 @@ bool read_simple_exr_header(const std::string& path, SimpleExrHeader* h) {
       return false;
     names.emplace_back(e.name.str, size_t(e.name.length));
   }
-  // The file stores its channels sorted by name; OpenImageIO lists colour first, then alpha.
-  std::sort(names.begin(), names.end());
-  static const std::vector<std::vector<std::string>> kSets = {
-      {"B", "G", "R"}, {"A", "B", "G", "R"}, {"Y"}, {"A", "Y"}};
-  static const std::vector<std::vector<std::string>> kOrder = {
-      {"R", "G", "B"}, {"R", "G", "B", "A"}, {"Y"}, {"Y", "A"}};
-  size_t set = kSets.size();
-  for (size_t i = 0; i < kSets.size(); ++i)
-    if (names == kSets[i]) set = i;
-  if (set == kSets.size()) return false;
+  if (is_luminance_chroma(names)) return false;
   int count = 0;
   if (exr_get_attribute_count(ctx.c, 0, &count) != EXR_ERR_SUCCESS) return false;
   for (int i = 0; i < count; ++i) {
@@ -452,9 +506,21 @@ bool read_simple_exr_header(const std::string& path, SimpleExrHeader* h) {
       return false;
     if (std::strncmp(a->name, "oiio:", 5) == 0) return false;  // OpenImageIO would read it as its own metadata
   }
+  order_as_openimageio(names);
   h->width = int(w);
   h->height = int(hh);
-  h->channels = kOrder[set];
+  h->channels = std::move(names);
+  return true;
+}
+
+bool read_simple_exr_header(const std::string& path, SimpleExrHeader* h) {
+  ExrLayout layout;
+  if (!read_exr_layout(path, &layout)) return false;
+  static const std::vector<std::vector<std::string>> kPlain = {{"R", "G", "B"}, {"R", "G", "B", "A"}, {"Y"}, {"Y", "A"}};
+  if (std::find(kPlain.begin(), kPlain.end(), layout.channels) == kPlain.end()) return false;
+  h->width = layout.width;
+  h->height = layout.height;
+  h->channels = std::move(layout.channels);
   return true;
 }
 

@@ -31,11 +31,21 @@ bool read_exr_scanlines(const std::string& path, const std::vector<std::string>&
 // file: its reader names what is wrong) and for tiled and deep parts (not checked).
 std::string exr_chunk_problem(const std::string& path);
 
-// The header of a plain OpenEXR file: one scanline part whose data window is its display window at
-// (0, 0), whose channels are exactly R, G, B[, A] or Y[, A] (half or float, not subsampled) and which
-// has no attribute named oiio:*. For such a file OpenImageIO 2.4 gives these channels in the order R,
-// G, B, A (Y, A) and the colour space kExrColorSpace, which its OpenEXR reader gives every file; false
-// for any other file (then ask OpenImageIO). No pixel is read.
+// The header of a one-part OpenEXR file as OpenImageIO 2.4 describes it, for a file with one
+// scanline part whose data window is its display window at (0, 0), whose channels are half or float,
+// not subsampled and not luminance-chroma (Y, BY, RY), and which has no attribute named oiio:*: its
+// size and every channel's name, in OpenImageIO's order (by layer, the name up to its last '.'; in a
+// layer R, G, B, Y, A, Z, ... first, X, Y, Z together where the layer has X and Y or Z; then by name),
+// with the colour space kExrColorSpace, which its OpenEXR reader gives every file. False for any other
+// file (then ask OpenImageIO). No pixel is read. A Blender multilayer frame is such a file.
+struct ExrLayout {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;
+};
+bool read_exr_layout(const std::string& path, ExrLayout* layout);
+
+// The header of a plain OpenEXR file: an ExrLayout whose channels are exactly R, G, B[, A] or Y[, A]
+// (what read_image_file reads without OpenImageIO).
 struct SimpleExrHeader {
   int width = 0, height = 0;
   std::vector<std::string> channels;

@@ -215,11 +215,11 @@ FrameHeader read_frame_header(const std::string& path) {
     if (fd < 0) throw IoError("cannot read '" + path + "': " + std::strerror(errno));
     ::close(fd);
   }
-  // A plain one-part OpenEXR file is described by the OpenEXR core library as OpenImageIO would
-  // (exr_scanlines.h); any other file by OpenImageIO.
+  // A one-part scanline OpenEXR file (a Blender multilayer frame among them) is described by the
+  // OpenEXR core library as OpenImageIO would (exr_scanlines.h); any other file by OpenImageIO.
   std::vector<oiio::Part> parts;
-  if (SimpleExrHeader simple; read_simple_exr_header(path, &simple)) {
-    parts.push_back({simple.width, simple.height, int(simple.channels.size()), simple.channels, kExrColorSpace});
+  if (ExrLayout layout; read_exr_layout(path, &layout)) {
+    parts.push_back({layout.width, layout.height, int(layout.channels.size()), layout.channels, kExrColorSpace});
   } else {
     parts = oiio::api().frame_parts(path, kMaxParts);
   }

@@ -190,6 +190,18 @@ TEST(ExrScanlines, DamagedBytesAreReadOrRefusedNeverACrash) {
   EXPECT_GT(refused, 0);
 }
 
+namespace {
+
+// `values` (float, interleaved) as the file `spec` describes, written by OpenImageIO.
+void write_with_oiio(const fs::path& path, const OIIO::ImageSpec& spec, const std::vector<float>& values) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec)) << OIIO::geterror();
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+  ASSERT_TRUE(out->close());
+}
+
+}  // namespace
+
 // A plain OpenEXR file (read_simple_exr_header) is described and read as OpenImageIO does: the same
 // channels in the same order, colour-space tag, channel count and pixels from read_image_file as
 // from metrics::read_image (OpenImageIO); what is not plain is declined and still read the same.
@@ -217,10 +229,7 @@ TEST(ExrScanlines, PlainFilesAsOpenImageIODescribesAndReadsThem) {
             spec.attribute("compression", comp);
             std::vector<float> mine(size_t(kW) * kH * names.size());
             for (size_t i = 0; i < mine.size(); ++i) mine[i] = px[i % px.size()];
-            auto out = OIIO::ImageOutput::create(path.string());
-            ASSERT_TRUE(out && out->open(path.string(), spec)) << OIIO::geterror();
-            ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, mine.data()));
-            ASSERT_TRUE(out->close());
+            write_with_oiio(path, spec, mine);
           }
           auto in = OIIO::ImageInput::open(path.string());
           ASSERT_TRUE(in);
@@ -248,4 +257,63 @@ TEST(ExrScanlines, PlainFilesAsOpenImageIODescribesAndReadsThem) {
           EXPECT_EQ(std::memcmp(fast.data.data(), oiio.data.data(), fast.data.size() * sizeof(float)), 0) << what;
         }
   EXPECT_EQ(plain, 4 * 2 * 2);  // every plain layout, half and float, ZIP and PIZ (the header is plain either way)
+}
+
+// Any one-part scanline file, a Blender multilayer frame among them, is described as OpenImageIO 2.4
+// describes it: the same channels in the same order (layers; R, G, B, Y, A, Z first in any case; X, Y,
+// Z together in a layer that has X and Y or Z), the same size and colour-space tag, and its pixels
+// read by name are OpenImageIO's. A luminance-chroma file, which OpenImageIO turns into RGB, is left
+// to OpenImageIO.
+TEST(ExrScanlines, LayeredFilesAsOpenImageIODescribesThem) {
+  test::TempDir dir("exr_layers");
+  const std::vector<float> px = test_pixels(false);
+  const std::vector<std::vector<std::string>> cases = {
+      {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B", "ViewLayer.Combined.A",
+       "ViewLayer.Depth.Z", "ViewLayer.Vector.X", "ViewLayer.Vector.Y", "ViewLayer.Vector.Z", "ViewLayer.Vector.W"},
+      {"A-x.R", "A.R", "A.G", "a.B", "Z", "depth", "Y", "N.X", "N.Y", "N.z", "P.X", "P.W", "u", "v", "alpha", "RA", "AR",
+       "b", "Red", "x.y.Blue", "x.y.green", "x.Y"},
+      {"X", "Y", "Z", "A"},   // a layer with X and Y: a position, X, Y, Z
+      {"X", "W", "A", "R"},   // X without Y or Z: the usual order
+      {"R", "G", "B"},
+      {"Y", "BY", "RY"},      // luminance-chroma: OpenImageIO's
+  };
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const auto& names = cases[k];
+    const fs::path path = dir.path() / ("layers" + std::to_string(k) + ".exr");
+    {
+      OIIO::ImageSpec spec(kW, kH, int(names.size()), OIIO::TypeDesc::FLOAT);
+      spec.channelnames = names;
+      spec.attribute("compression", "zip");
+      std::vector<float> mine(size_t(kW) * kH * names.size());
+      for (size_t i = 0; i < mine.size(); ++i) mine[i] = px[(i * 7 + k) % px.size()];
+      write_with_oiio(path, spec, mine);
+    }
+    auto in = OIIO::ImageInput::open(path.string());
+    ASSERT_TRUE(in);
+    ExrLayout layout;
+    const bool mine = read_exr_layout(path.string(), &layout);
+    EXPECT_EQ(mine, k != cases.size() - 1) << names[0];
+    const FrameHeader h = read_frame_header(path.string());
+    EXPECT_EQ(h.channels, in->spec().channelnames) << names[0];
+    EXPECT_EQ(h.width, in->spec().width);
+    EXPECT_EQ(h.height, in->spec().height);
+    EXPECT_EQ(h.colorspace, in->spec().get_string_attribute("oiio:ColorSpace"));
+    if (!mine) continue;
+    EXPECT_EQ(layout.channels, in->spec().channelnames) << names[0];
+    std::vector<float> theirs(size_t(kW) * kH * names.size());
+    ASSERT_TRUE(in->read_image(0, 0, 0, int(names.size()), OIIO::TypeDesc::FLOAT, theirs.data()));
+    const Image read = read_frame_channels(path.string(), layout.channels);
+    ASSERT_EQ(read.data.size(), theirs.size());
+    EXPECT_EQ(std::memcmp(read.data.data(), theirs.data(), theirs.size() * sizeof(float)), 0) << names[0];
+  }
+  // Blender's own frames (tests/data/blender: Cycles, ZIP, a Combined, Depth and Vector layer).
+  for (const char* seq : {"ref", "spp1"}) {
+    const std::string path = std::string(GLINTLAB_TEST_DATA_DIR) + "/blender/" + seq + "/frame_0001.exr";
+    ExrLayout layout;
+    ASSERT_TRUE(read_exr_layout(path, &layout)) << path;
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(layout.channels, in->spec().channelnames) << path;
+    EXPECT_EQ(layout.channels.size(), 9u);
+  }
 }
