@@ -13,7 +13,8 @@ std::atomic<bool> g_loaded{false};
 const Api& api() {
   static const Api* table = [] {
     auto a = static_cast<const Api*>(
-        load_plugin("libglintlab_flow.so", "glintlab_flow_api", kApiVersion, "OpenCV optical flow"));
+        load_plugin("libglintlab_flow.so", "glintlab_flow_api", kApiVersion, "OpenCV optical flow",
+                    "libopencv-core406 libopencv-video406"));
     g_loaded = true;
     return a;
   }();

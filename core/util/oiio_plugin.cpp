@@ -13,7 +13,7 @@ std::atomic<bool> g_loaded{false};
 const Api& api() {
   static const Api* table = [] {
     auto a = static_cast<const Api*>(load_plugin("libglintlab_oiio.so", "glintlab_oiio_api", kApiVersion,
-                                                 "OpenImageIO image reading and writing"));
+                                                 "OpenImageIO image reading and writing", "libopenimageio2.4"));
     g_loaded = true;
     return a;
   }();

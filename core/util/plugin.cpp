@@ -6,11 +6,13 @@
 
 namespace glintlab {
 
-const void* load_plugin(const char* library, const char* symbol, int version, const std::string& what) {
+const void* load_plugin(const char* library, const char* symbol, int version, const std::string& what,
+                        const std::string& packages) {
   void* lib = ::dlopen(library, RTLD_NOW | RTLD_LOCAL);
   if (!lib) {
     const char* e = ::dlerror();
-    throw IoError(std::string("cannot load ") + library + ", glintlab's " + what + ": " + (e ? e : "unknown reason"));
+    throw IoError(std::string("cannot load ") + library + ", glintlab's " + what + ": " + (e ? e : "unknown reason") +
+                  " (it needs the Debian packages " + packages + ": apt install " + packages + ")");
   }
   using Get = const void* (*)();
   auto get = reinterpret_cast<Get>(::dlsym(lib, symbol));

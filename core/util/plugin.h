@@ -10,9 +10,11 @@
 namespace glintlab {
 
 // dlopen(library), then the table its extern "C" function `symbol` returns, whose first member is an
-// int version that must equal `version`. IoError naming the library, `what` it is for and dlerror()'s
-// reason when it cannot be loaded, or when it is not this glintlab's (no such function, another
-// version).
-const void* load_plugin(const char* library, const char* symbol, int version, const std::string& what);
+// int version that must equal `version`. IoError naming the library, `what` it is for, dlerror()'s
+// reason and the Debian `packages` whose libraries it needs (glintlab's package recommends them, so an
+// install without its recommendations lacks them) when it cannot be loaded, or when it is not this
+// glintlab's (no such function, another version).
+const void* load_plugin(const char* library, const char* symbol, int version, const std::string& what,
+                        const std::string& packages);
 
 }  // namespace glintlab

@@ -38,12 +38,20 @@ grep -qx " Version: $version" <<<"$info" || fail "dpkg-deb -I: no 'Version: $ver
 grep -qx " Architecture: amd64" <<<"$info" || fail "dpkg-deb -I: no 'Architecture: amd64'"
 depends=$(sed -n 's/^ Depends: //p' <<<"$info" | tr ',' '\n' | sed 's/^ *//; s/ .*//')
 [ -n "$depends" ] || fail "dpkg-deb -I: no Depends"
-bad=$(grep -E -- '-dev$|^(gcc|g\+\+|clang|cpp|cmake|build-essential|libstdc\+\+-[0-9]+-dev)' <<<"$depends" || true)
-[ -z "$bad" ] || fail "Depends names build-time packages: $bad"
-# Every library the program names (ELF NEEDED) belongs to a package it depends on, where dpkg knows it.
+recommends=$(sed -n 's/^ Recommends: //p' <<<"$info" | tr ',' '\n' | sed 's/^ *//; s/ .*//')
+[ -n "$recommends" ] || fail "dpkg-deb -I: no Recommends"
+bad=$(grep -E -- '-dev$|^(gcc|g\+\+|clang|cpp|cmake|build-essential|libstdc\+\+-[0-9]+-dev)' <<<"$depends"$'\n'"$recommends" || true)
+[ -z "$bad" ] || fail "Depends or Recommends names build-time packages: $bad"
+# Every library the program and its Python module name (ELF NEEDED) belongs to a package it depends on,
+# where dpkg knows it; those of glintlab's own libraries that it loads on first use (core/util/plugin.h)
+# to one it depends on or recommends.
 if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf >/dev/null; then
-  # The program and glintlab's own libraries it loads on first use (core/util/plugin.h).
-  for elf in "$build/glintlab" "$build/libglintlab_oiio.so" "$build/libglintlab_flow.so"; do
+  for elf in "$build/glintlab" "$build"/python/glintlab/_core*.so "$build/libglintlab_oiio.so" \
+    "$build/libglintlab_flow.so"; do
+    case $elf in
+      */libglintlab_*.so) allowed=$depends$'\n'$recommends; list="Depends or Recommends" ;;
+      *) allowed=$depends; list="Depends" ;;
+    esac
     needed=$(readelf -d "$elf" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')
     [ -n "$needed" ] || fail "readelf -d lists no NEEDED library of $elf"
     libs=$(ldd "$elf")
@@ -62,13 +70,14 @@ if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf
       [ -n "${so_of[$lib]:-}" ] || continue
       pkg=$(grep -F -e ": ${so_of[$lib]}" -e ": ${real_of[$lib]}" <<<"$owners" | head -n1 | sed 's/[:,].*//' || true)
       [ -n "$pkg" ] || continue
-      grep -qx "$pkg" <<<"$depends" || fail "$elf needs $lib, of the package $pkg, which Depends does not name"
+      grep -qx "$pkg" <<<"$allowed" || fail "$elf needs $lib, of the package $pkg, not in $list"
     done
     unset so_of real_of
   done
 fi
-for p in libvulkan1 mesa-vulkan-drivers python3 python3-matplotlib python3-numpy python3-pil python3-optuna; do
-  grep -qx "$p" <<<"$depends" || fail "Depends lacks $p (the renderer's driver, the report's or tune's Python)"
+grep -qx libvulkan1 <<<"$depends" || fail "Depends lacks libvulkan1"
+for p in mesa-vulkan-drivers libopenimageio2.4 python3 python3-matplotlib python3-numpy python3-pil python3-optuna; do
+  grep -qx "$p" <<<"$recommends" || fail "Recommends lacks $p (the renderer's driver, OpenImageIO, the report's or tune's Python)"
 done
 
 files=$(dpkg-deb -c "$deb" | awk '{print $NF}')
