@@ -27,8 +27,9 @@
 //      whole, and ms and frames/s per metric group and for reading a frame; then
 //      the same with every group of statistics, as `run` measures.
 //   6. Start-up: `glintlab compare` on a 16x16 pair of float EXR files, `glintlab check` of a
-//      summary against itself and `glintlab --help`, each in a fresh process, interleaved: median
-//      wall and CPU (user + system) ms, and each one's CPU over --help's.
+//      summary against itself, `glintlab measure` of the README's Blender sequence (--no-report)
+//      and `glintlab --help`, each in a fresh process, interleaved: median wall and CPU (user +
+//      system) ms, and each one's CPU over --help's.
 // The scene is fixed here (the close orbit over a wavy plane the figures in the
 // README were taken on), independent of the default experiment.
 // Usage: glintlab_bench [--device NAME|INDEX] [--frames N] [--size W H]
@@ -371,9 +372,17 @@ void startup_section(int runs) {
     std::vector<std::string> args;
     std::vector<ProcessCost> costs;
   };
-  std::vector<Command> commands = {{"glintlab --help", {GLINTLAB_CLI, "--help"}, {}},
-                                   {"glintlab compare 16x16", {GLINTLAB_CLI, "compare", t, r}, {}},
-                                   {"glintlab check", {GLINTLAB_CLI, "check", summary, summary}, {}}};
+  // The README's measure of a Blender sequence: eight 80x45 multilayer EXR frames with their vectors.
+  const std::string cycles = std::string(GLINTLAB_SOURCE_DIR) + "/tests/data/blender/";
+  std::vector<Command> commands = {
+      {"glintlab --help", {GLINTLAB_CLI, "--help"}, {}},
+      {"glintlab compare 16x16", {GLINTLAB_CLI, "compare", t, r}, {}},
+      {"glintlab check", {GLINTLAB_CLI, "check", summary, summary}, {}},
+      {"glintlab measure Cycles",
+       {GLINTLAB_CLI, "measure", "--reference", cycles + "ref/frame_####.exr:ViewLayer.Combined", "--test",
+        "spp1=" + cycles + "spp1/frame_####.exr:ViewLayer.Combined", "--motion-from", "reference",
+        "--motion-convention", "blender", "--out", (dir / "measure").string(), "--no-report"},
+       {}}};
   for (int i = 0; i < runs + 1; ++i)  // the first round warms the page cache and is not counted
     for (Command& c : commands) {
       const ProcessCost cost = spawn_timed(c.args);
