@@ -2,24 +2,16 @@
 
 #include "core/util/plugin.h"
 
-#include <atomic>
-
 namespace glintlab::oiio {
 
 namespace {
-std::atomic<bool> g_loaded{false};
+// Constant-initialised (constexpr constructor): ready before any other static initialiser runs.
+LazyPlugin g_plugin("libglintlab_oiio.so", "glintlab_oiio_api", kApiVersion,
+                    "OpenImageIO image reading and writing", "libopenimageio2.4");
 }
 
-const Api& api() {
-  static const Api* table = [] {
-    auto a = static_cast<const Api*>(load_plugin("libglintlab_oiio.so", "glintlab_oiio_api", kApiVersion,
-                                                 "OpenImageIO image reading and writing", "libopenimageio2.4"));
-    g_loaded = true;
-    return a;
-  }();
-  return *table;
-}
+const Api& api() { return g_plugin.table<Api>(); }
 
-bool loaded() { return g_loaded; }
+bool loaded() { return g_plugin.loaded(); }
 
 }  // namespace glintlab::oiio

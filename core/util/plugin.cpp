@@ -23,4 +23,14 @@ const void* load_plugin(const char* library, const char* symbol, int version, co
   return table;
 }
 
+const void* LazyPlugin::load() {
+  if (loaded_) return table_;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!table_) {
+    table_ = load_plugin(library_, symbol_, version_, what_, packages_);
+    loaded_ = true;
+  }
+  return table_;
+}
+
 }  // namespace glintlab

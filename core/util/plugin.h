@@ -5,6 +5,8 @@
 // Python module: beside build/glintlab in the build tree, PREFIX/lib/glintlab when installed).
 #pragma once
 
+#include <atomic>
+#include <mutex>
 #include <string>
 
 namespace glintlab {
@@ -16,5 +18,27 @@ namespace glintlab {
 // glintlab's (no such function, another version).
 const void* load_plugin(const char* library, const char* symbol, int version, const std::string& what,
                         const std::string& packages);
+
+// One such library, loaded by the first call of table() (thread-safe; an IoError from load_plugin is
+// thrown again by each later call), and whether it has been (for the tests of the paths that must not).
+class LazyPlugin {
+ public:
+  constexpr LazyPlugin(const char* library, const char* symbol, int version, const char* what, const char* packages)
+      : library_(library), symbol_(symbol), version_(version), what_(what), packages_(packages) {}
+  template <class Api>
+  const Api& table() {
+    return *static_cast<const Api*>(load());
+  }
+  bool loaded() const { return loaded_; }
+
+ private:
+  const void* load();
+  const char *library_, *symbol_;
+  int version_;
+  const char *what_, *packages_;
+  std::mutex mutex_;
+  const void* table_ = nullptr;
+  std::atomic<bool> loaded_{false};
+};
 
 }  // namespace glintlab

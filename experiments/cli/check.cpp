@@ -216,7 +216,7 @@ std::vector<CheckRow> check_summary(const nlohmann::json& summary, const nlohman
 }
 
 static int check_command(const std::string& summary_path, const std::string& baseline_path,
-              const std::vector<std::string>& tolerance_args, std::ostream& out, std::ostream& err) {
+                         const std::vector<std::string>& tolerance_args, std::ostream& out) {
   // Bad input throws: run_check's run_guarded says it and returns 2.
   const std::map<std::string, double> tol = parse_check_tolerances(tolerance_args);
   const nlohmann::json summary = read_json_file(summary_path);
@@ -259,7 +259,7 @@ static int check_command(const std::string& summary_path, const std::string& bas
 
 int run_check(const std::string& summary_path, const std::string& baseline_path,
               const std::vector<std::string>& tolerance_args, std::ostream& out, std::ostream& err) {
-  return run_guarded([&] { return check_command(summary_path, baseline_path, tolerance_args, out, err); }, err);
+  return run_guarded([&] { return check_command(summary_path, baseline_path, tolerance_args, out); }, err);
 }
 
 void add_check_command(CLI::App& app, int& exit_code) {

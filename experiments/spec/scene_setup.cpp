@@ -2,6 +2,7 @@
 #include "core/util/strings.h"
 
 #include "core/scene/mesh.h"
+#include "core/util/io_error.h"
 #include "core/util/json_check.h"
 #include "metrics/color/measurement_space.h"
 
@@ -163,6 +164,8 @@ metrics::ColorManager load_color_manager(const std::string& ocio_config) {
                                                         : "the shipped OCIO config " + path;
   try {
     return metrics::ColorManager(path);
+  } catch (const IoError&) {
+    throw;  // libglintlab_ocio.so could not be loaded: the system's reason, not the config's
   } catch (const std::runtime_error& e) {
     throw ConfigError(what + ": not a usable OCIO config (" + e.what() + ")");
   }

@@ -1,6 +1,8 @@
 // Colour management through OpenColorIO: every colour conversion of glintlab goes through the
 // shipped config (metrics/color/ocio/config.ocio) or the one named by $OCIO. Metrics consume images in
 // CIE XYZ D65 with Y = 1 for scene white (to_xyz_d65); PNG previews go through a display/view.
+// OpenColorIO itself is called from libglintlab_ocio.so (core/util/ocio_plugin.h), which the first
+// ColorManager loads: a process that makes none never loads OpenColorIO.
 #pragma once
 
 #include <array>

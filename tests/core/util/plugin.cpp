@@ -27,3 +27,11 @@ TEST(Plugin, ALibraryThatIsNotGlintlabsIsRefused) {
   // The C library is loaded but has no glintlab table.
   EXPECT_THROW(load_plugin("libc.so.6", "glintlab_oiio_api", 1, "a test", "libc6"), IoError);
 }
+
+TEST(Plugin, ALazyPluginLoadsOnFirstUseAndSaysAgainWhyItCannot) {
+  LazyPlugin missing("libglintlab_no_such_plugin.so", "glintlab_no_such_api", 1, "nothing", "libfoo1");
+  EXPECT_FALSE(missing.loaded());
+  EXPECT_THROW(missing.table<int>(), IoError);
+  EXPECT_THROW(missing.table<int>(), IoError);  // not a table left half made
+  EXPECT_FALSE(missing.loaded());
+}

@@ -1,0 +1,123 @@
+// libglintlab_ocio.so: every call glintlab makes into OpenColorIO (core/util/ocio_plugin.h), loaded when
+// the first colour configuration is, so that a process that converts no colour never loads OpenColorIO.
+// Only glintlab_ocio_api is exported (the rest is hidden).
+#include "core/util/ocio_plugin.h"
+
+#include <OpenColorIO/OpenColorIO.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace glintlab::ocio {
+namespace {
+
+class CpuProcessor final : public Processor {
+ public:
+  explicit CpuProcessor(OCIO::ConstCPUProcessorRcPtr cpu) : cpu_(std::move(cpu)) {}
+
+  // RGBA goes through OCIO's own RGBA path, two and a half times faster than RGB with strides that skip
+  // alpha (1080p lin_rec709 to CIE-XYZ-D65: 2.3–2.7 ms against 6.0–6.9), with the same colours to the
+  // bit. That path may write alpha (a matrix's zero times an infinite colour is NaN), so it runs over
+  // bands of rows that stay in the cache, each band's alpha kept aside and put back.
+  void apply_rgb(Image& img) const override {
+    if (img.empty()) return;
+    if (img.channels == 4) {
+      constexpr int kBandRows = 16;
+      const std::size_t w = std::size_t(img.width);
+      std::vector<float> alpha(kBandRows * w);
+      for (int y0 = 0; y0 < img.height; y0 += kBandRows) {
+        const int rows = std::min(kBandRows, img.height - y0);
+        float* band = img.px(0, y0);
+        const std::size_t n = std::size_t(rows) * w;
+        for (std::size_t i = 0; i < n; ++i) alpha[i] = band[4 * i + 3];
+        OCIO::PackedImageDesc desc(band, img.width, rows, 4);
+        cpu_->apply(desc);
+        for (std::size_t i = 0; i < n; ++i) band[4 * i + 3] = alpha[i];
+      }
+      return;
+    }
+    const std::ptrdiff_t c = sizeof(float);
+    const std::ptrdiff_t x = c * img.channels;
+    const std::ptrdiff_t y = x * img.width;
+    OCIO::PackedImageDesc desc(img.data.data(), img.width, img.height, 3, OCIO::BIT_DEPTH_F32, c, x, y);
+    cpu_->apply(desc);
+  }
+
+ private:
+  OCIO::ConstCPUProcessorRcPtr cpu_;
+};
+
+class OcioConfig final : public Config {
+ public:
+  explicit OcioConfig(OCIO::ConstConfigRcPtr config) : config_(std::move(config)) {}
+
+  std::string canonical_name(const std::string& name) const override {
+    OCIO::ConstColorSpaceRcPtr cs = name.empty() ? nullptr : config_->getColorSpace(name.c_str());
+    return cs ? cs->getName() : "";
+  }
+  std::vector<std::string> spaces() const override {
+    std::vector<std::string> out;
+    const int n = config_->getNumColorSpaces(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ACTIVE);
+    for (int i = 0; i < n; ++i)
+      out.emplace_back(config_->getColorSpaceNameByIndex(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ACTIVE, i));
+    return out;
+  }
+  std::vector<std::string> displays() const override {
+    std::vector<std::string> out;
+    for (int i = 0; i < config_->getNumDisplays(); ++i) out.emplace_back(config_->getDisplay(i));
+    return out;
+  }
+  std::vector<std::string> views(const std::string& display) const override {
+    std::vector<std::string> out;
+    const int n = config_->getNumViews(display.c_str());
+    for (int i = 0; i < n; ++i) out.emplace_back(config_->getView(display.c_str(), i));
+    return out;
+  }
+  std::string display_view_space(const std::string& display, const std::string& view) const override {
+    const char* s = config_->getDisplayViewColorSpaceName(display.c_str(), view.c_str());
+    return s ? s : "";
+  }
+  std::shared_ptr<const Processor> processor(const std::string& src, const std::string& dst) const override {
+    try {
+      return std::make_shared<CpuProcessor>(config_->getProcessor(src.c_str(), dst.c_str())->getDefaultCPUProcessor());
+    } catch (const OCIO::Exception& e) {
+      throw std::runtime_error(e.what());
+    }
+  }
+  std::shared_ptr<const Processor> display_processor(const std::string& src, const std::string& display,
+                                                     const std::string& view) const override {
+    try {
+      auto dvt = OCIO::DisplayViewTransform::Create();
+      dvt->setSrc(src.c_str());
+      dvt->setDisplay(display.c_str());
+      dvt->setView(view.c_str());
+      return std::make_shared<CpuProcessor>(config_->getProcessor(dvt)->getDefaultCPUProcessor());
+    } catch (const OCIO::Exception& e) {
+      throw std::runtime_error(e.what());
+    }
+  }
+
+ private:
+  OCIO::ConstConfigRcPtr config_;
+};
+
+std::unique_ptr<Config> load(const std::string& path) {
+  try {
+    OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(path.c_str());
+    config->validate();
+    return std::make_unique<OcioConfig>(std::move(config));
+  } catch (const OCIO::Exception& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
+}  // namespace
+}  // namespace glintlab::ocio
+
+extern "C" __attribute__((visibility("default"))) const glintlab::ocio::Api* glintlab_ocio_api() {
+  static const glintlab::ocio::Api api{glintlab::ocio::kApiVersion, &glintlab::ocio::load};
+  return &api;
+}
