@@ -70,9 +70,7 @@ ChannelFiles resolve(const std::string& what, const std::string& text, const std
 
 // The same for frames in memory: `count` frames, frame k the run's frame k.
 ChannelFiles resolve(const std::string& what, std::shared_ptr<const FrameArray> array, size_t count) {
-  if (size_t(array->frames) != count)
-    throw ConfigError(what + ": '" + array->name + "' has " + std::to_string(array->frames) +
-                      " frame(s) but the run has " + std::to_string(count) + " (an array's frame k is the run's frame k)");
+  check_array_frames(*array, count, what);
   ChannelFiles s;
   s.what = what;
   s.seq.text = array->name;
@@ -107,18 +105,9 @@ std::vector<int> select_numbers(const std::string& what, const std::string& text
 
 // Every frame of a source: one size, the channels present, within the pixel limit.
 void check_headers(const ChannelFiles& s, int* width, int* height) {
-  for (const auto& path : s.paths) {
-    const FrameHeader h = s.array ? array_header(*s.array) : read_frame_header(path);
-    if (*width == 0) *width = h.width, *height = h.height;
-    if (h.width != *width || h.height != *height)
-      throw ConfigError(s.what + ": '" + path + "' is " + std::to_string(h.width) + "x" + std::to_string(h.height) +
-                        " but the measurement is " + std::to_string(*width) + "x" + std::to_string(*height) +
-                        " (every frame of every sequence must have one size)");
-    for (const auto& c : s.channels)
-      if (std::find(h.channels.begin(), h.channels.end(), c) == h.channels.end())
-        throw ConfigError(s.what + ": '" + path + "' has no channel '" + c + "' (the sequence's first frame has it); "
-                          "the file has: " + channel_list(h));
-  }
+  for (const auto& path : s.paths)
+    check_frame_header(s.array ? array_header(*s.array) : read_frame_header(path), s.channels, s.what, path, width,
+                       height);
 }
 
 // The layer of a file that holds a convention's vectors, for --motion-from: the colour layer's

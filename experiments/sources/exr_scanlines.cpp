@@ -14,6 +14,7 @@
 #include <strings.h>
 #include <string>
 #include <sys/stat.h>
+#include <utility>
 #include <vector>
 #if defined(__x86_64__)
 #include <cpuid.h>
@@ -416,6 +417,13 @@ namespace {
 
 bool iequals(const std::string& a, const char* b) { return strcasecmp(a.c_str(), b) == 0; }
 
+// OpenImageIO's split of a channel name: the layer up to and including its last '.', the suffix after.
+std::pair<std::string, std::string> layer_and_suffix(const std::string& name) {
+  const size_t dot = name.rfind('.');
+  if (dot == std::string::npos) return {"", name};
+  return {name.substr(0, dot + 1), name.substr(dot + 1)};
+}
+
 // OpenImageIO 2.4's order of an OpenEXR part's channels: by layer (the name up to and including its
 // last '.'), within a layer by the rank of the names it knows (R, G, B, Y, A, Z, ... in any case;
 // X, Y, Z together where the layer has X and Y or Z: a position or a normal), then by name.
@@ -430,9 +438,8 @@ void order_as_openimageio(std::vector<std::string>& names) {
                                      "A", "Alpha", "AR", "RA", "AG", "GA", "AB", "BA", "Depth", "Zback"};
   std::vector<ChannelRank> ranks;
   for (const auto& n : names) {
-    const size_t dot = n.rfind('.');
-    ranks.push_back({n, dot == std::string::npos ? "" : n.substr(0, dot + 1),
-                     dot == std::string::npos ? n : n.substr(dot + 1)});
+    auto [layer, suffix] = layer_and_suffix(n);
+    ranks.push_back({n, std::move(layer), std::move(suffix)});
   }
   std::sort(ranks.begin(), ranks.end(), [](const ChannelRank& a, const ChannelRank& b) { return a.layer < b.layer; });
   for (auto begin = ranks.begin(); begin != ranks.end();) {
@@ -462,10 +469,8 @@ void order_as_openimageio(std::vector<std::string>& names) {
 // Luminance-chroma (Y, BY, RY[, A or Alpha], nothing else): OpenImageIO converts it to RGB.
 bool is_luminance_chroma(const std::vector<std::string>& names) {
   auto has = [&](const char* suffix) {
-    return std::any_of(names.begin(), names.end(), [&](const std::string& n) {
-      const size_t dot = n.rfind('.');
-      return iequals(dot == std::string::npos ? n : n.substr(dot + 1), suffix);
-    });
+    return std::any_of(names.begin(), names.end(),
+                       [&](const std::string& n) { return iequals(layer_and_suffix(n).second, suffix); });
   };
   if (names.size() < 3 || names.size() > 4 || !has("Y") || !has("BY") || !has("RY")) return false;
   return names.size() == 3 || has("A") || has("Alpha");

@@ -345,19 +345,27 @@ FrameFiles open_colour_sequence(const std::string& seq, const std::vector<int>& 
   } catch (const std::invalid_argument& e) {
     throw ConfigError(what + ": " + e.what());
   }
-  for (const auto& path : f.paths) {
-    const FrameHeader h = read_frame_header(path);
-    if (*width == 0) *width = h.width, *height = h.height;
-    if (h.width != *width || h.height != *height)
-      throw ConfigError(what + ": '" + path + "' is " + std::to_string(h.width) + "x" + std::to_string(h.height) +
-                        " but the run is " + std::to_string(*width) + "x" + std::to_string(*height) +
-                        " (every frame of every sequence must have one size)");
-    for (const auto& c : f.channels)
-      if (std::find(h.channels.begin(), h.channels.end(), c) == h.channels.end())
-        throw ConfigError(what + ": '" + path + "' has no channel '" + c + "' (the sequence's first frame has it); "
-                          "the file has: " + channel_list(h));
-  }
+  for (const auto& path : f.paths) check_frame_header(read_frame_header(path), f.channels, what, path, width, height);
   return f;
+}
+
+void check_frame_header(const FrameHeader& h, const std::vector<std::string>& channels, const std::string& what,
+                        const std::string& name, int* width, int* height) {
+  if (*width == 0) *width = h.width, *height = h.height;
+  if (h.width != *width || h.height != *height)
+    throw ConfigError(what + ": '" + name + "' is " + std::to_string(h.width) + "x" + std::to_string(h.height) +
+                      " but the run is " + std::to_string(*width) + "x" + std::to_string(*height) +
+                      " (every frame of every sequence must have one size)");
+  for (const auto& c : channels)
+    if (std::find(h.channels.begin(), h.channels.end(), c) == h.channels.end())
+      throw ConfigError(what + ": '" + name + "' has no channel '" + c + "' (the sequence's first frame has it); "
+                        "the file has: " + channel_list(h));
+}
+
+void check_array_frames(const FrameArray& a, size_t count, const std::string& what) {
+  if (size_t(a.frames) != count)
+    throw ConfigError(what + ": '" + a.name + "' has " + std::to_string(a.frames) + " frame(s) but the run has " +
+                      std::to_string(count) + " (an array's frame k is the run's frame k)");
 }
 
 FrameHeader array_header(const FrameArray& a) {
@@ -403,21 +411,15 @@ FrameFiles open_colour_array(std::shared_ptr<const FrameArray> array, size_t cou
                              const metrics::ColorManager& cm, const std::string& what, int* width, int* height,
                              std::ostream& log) {
   const FrameArray& a = *array;
-  if (size_t(a.frames) != count)
-    throw ConfigError(what + ": '" + a.name + "' has " + std::to_string(a.frames) + " frame(s) but the run has " +
-                      std::to_string(count) + " (an array's frame k is the run's frame k)");
+  check_array_frames(a, count, what);
   if (std::int64_t(a.width) * a.height > kMaxSequencePixels)
     throw ConfigError(what + ": '" + a.name + "' has frames of " + std::to_string(a.width) + "x" +
                       std::to_string(a.height) + ", more than " + std::to_string(kMaxSequencePixels) + " pixels");
-  if (*width == 0) *width = a.width, *height = a.height;
-  if (a.width != *width || a.height != *height)
-    throw ConfigError(what + ": '" + a.name + "' is " + std::to_string(a.width) + "x" + std::to_string(a.height) +
-                      " but the run is " + std::to_string(*width) + "x" + std::to_string(*height) +
-                      " (every frame of every sequence must have one size)");
   FrameFiles f;
   f.seq = a.name;
   for (size_t k = 0; k < count; ++k) f.paths.push_back(array_frame_name(a, k));
   f.channels = colour_channels(array_header(a), "", a.name);
+  check_frame_header(array_header(a), f.channels, what, a.name, width, height);
   try {
     f.space = metrics::input_space(cm, forced, "", what, a.name, log);
   } catch (const std::invalid_argument& e) {

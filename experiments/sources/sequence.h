@@ -101,6 +101,12 @@ struct FrameArray {
   int frames = 0, height = 0, width = 0;
   std::vector<std::string> channels;
 };
+// A frame's header (`name`: its file or array frame) against the run: its size, which is the run's
+// (or sets it, where *width is 0), and every channel read of it present. ConfigError naming `what`.
+void check_frame_header(const FrameHeader& h, const std::vector<std::string>& channels, const std::string& what,
+                        const std::string& name, int* width, int* height);
+// An array of `count` frames, the run's: ConfigError naming `what` otherwise.
+void check_array_frames(const FrameArray& a, size_t count, const std::string& what);
 // An array's "header" (its size and channel names), as read_frame_header gives a file's.
 FrameHeader array_header(const FrameArray& a);
 // The name of frame k of an array in messages: "array test1, frame 3".
