@@ -1,5 +1,8 @@
 #include "core/util/content_hash.h"
 
+// XXH3 compiled into this file (xxhash's header-only mode): the program links no libxxhash, one
+// library fewer for the dynamic loader to map and search at every start.
+#define XXH_INLINE_ALL
 #include <xxhash.h>
 
 #include <cstdio>

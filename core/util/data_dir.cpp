@@ -57,6 +57,13 @@ DataLocations locate_data(const std::string& data_env, const std::string& result
     out.data = "share/glintlab";
     out.why = "/proc/self/exe is unreadable, so the folder beside the executable is unknown";
   }
+  if (in_build_tree) {
+    out.plugins = GLINTLAB_BUILD_BINARY_DIR;
+  } else if (!executable.empty()) {
+    fs::path prefix = fs::path(executable);
+    for (int i = 0; i <= depth; ++i) prefix = prefix.parent_path();
+    out.plugins = (prefix / "lib" / "glintlab").lexically_normal().string();
+  }
   if (!results_env.empty())
     out.results = results_env;
   else if (in_build_tree)

@@ -10,7 +10,8 @@
 //     the prefix it is installed in (set_data_anchor).
 // The default output folder (`--out`, `--cache`, `--study`) is $GLINTLAB_RESULTS_DIR when set and not
 // empty, the source tree's results/ for a program in the build folder, else results/ in the current
-// folder. The executable's path is /proc/self/exe.
+// folder. The executable's path is /proc/self/exe. glintlab's own libraries (core/util/plugin.h) are
+// in the build folder for a program inside it, else in PREFIX/lib/glintlab.
 #pragma once
 
 #include <string>
@@ -22,6 +23,8 @@ struct DataLocations {
   std::string why;      // why that folder: "$GLINTLAB_DATA_DIR", "the source tree of the build folder ..." or
                         // "../share/glintlab beside the executable ..."
   std::string results;  // the default output folder
+  std::string plugins;  // where glintlab's own libraries are (core/util/plugin.h): the build folder for a
+                        // program in it, else PREFIX/lib/glintlab; "" where unknown
 };
 
 // The locations for a program at `executable` with the two variables set to `data_env` and

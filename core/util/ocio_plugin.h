@@ -10,8 +10,10 @@
 
 #include "core/util/image.h"
 
+#include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glintlab::ocio {
@@ -23,6 +25,13 @@ class Processor {
   // Converts the RGB channels of an interleaved float image (3 or 4 channels) in place; alpha is never
   // changed.
   virtual void apply_rgb(Image& img) const = 0;
+};
+
+// One matrix step of an OpenColorIO processor, as OpenColorIO holds it: out = m (r, g, b, a) + offset,
+// m row-major.
+struct MatrixStep {
+  std::array<double, 16> m{};
+  std::array<double, 4> offset{};
 };
 
 // One loaded and validated OpenColorIO config.
@@ -42,9 +51,15 @@ class Config {
   virtual std::shared_ptr<const Processor> processor(const std::string& src, const std::string& dst) const = 0;
   virtual std::shared_ptr<const Processor> display_processor(const std::string& src, const std::string& display,
                                                              const std::string& view) const = 0;
+  // Every name canonical_name() knows (colour spaces, their aliases, roles) with its canonical name.
+  virtual std::vector<std::pair<std::string, std::string>> names() const = 0;
+  // The steps of processor(src, dst) after OpenColorIO's default optimisation, when they are all
+  // matrices: true and the steps in order (none: the processor changes nothing). False when any step is
+  // something else (a curve, a LUT). std::runtime_error with OpenColorIO's reason.
+  virtual bool matrix_steps(const std::string& src, const std::string& dst, std::vector<MatrixStep>& steps) const = 0;
 };
 
-constexpr int kApiVersion = 1;
+constexpr int kApiVersion = 2;
 
 struct Api {
   int version;

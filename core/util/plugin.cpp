@@ -1,14 +1,24 @@
 #include "core/util/plugin.h"
 
+#include "core/util/data_dir.h"
 #include "core/util/io_error.h"
 
 #include <dlfcn.h>
+
+#include <filesystem>
 
 namespace glintlab {
 
 const void* load_plugin(const char* library, const char* symbol, int version, const std::string& what,
                         const std::string& packages) {
-  void* lib = ::dlopen(library, RTLD_NOW | RTLD_LOCAL);
+  // By its path where glintlab's libraries are (core/util/data_dir.h), else by name (the dynamic loader's
+  // search: LD_LIBRARY_PATH, --library-path).
+  std::string path = library;
+  if (const std::string& dir = data_locations().plugins; !dir.empty()) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(std::filesystem::path(dir) / library, ec)) path = dir + "/" + library;
+  }
+  void* lib = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!lib) {
     const char* e = ::dlerror();
     throw IoError(std::string("cannot load ") + library + ", glintlab's " + what + ": " + (e ? e : "unknown reason") +

@@ -1,8 +1,11 @@
 // glintlab's own shared libraries that hold what only some commands need (libglintlab_oiio.so:
 // OpenImageIO, core/util/oiio_plugin.h; libglintlab_flow.so: OpenCV's optical flow,
 // core/util/flow_plugin.h), loaded with dlopen on first use so that the others never load the
-// libraries they link. The RUNPATH of the object that calls dlopen finds them (the program or the
-// Python module: beside build/glintlab in the build tree, PREFIX/lib/glintlab when installed).
+// libraries they link. They are loaded by their path in the folder core/util/data_dir.h names (the build
+// folder for a program in it, PREFIX/lib/glintlab when installed), else by name through the dynamic
+// loader's search. The program and the Python module carry no RUNPATH: one would be searched first for
+// every library they link, at every start (about a hundred failed opens for the program in the build
+// folder).
 #pragma once
 
 #include <atomic>

@@ -5,12 +5,13 @@
 // their construction releases what was already created.
 #pragma once
 
-#include <vulkan/vulkan.h>
+#include "core/vk/vulkan_functions.h"
 
 namespace glintlab::core {
 
-// Owns one Vulkan handle destroyed with `vkDestroy*(device, h, nullptr)`.
-template <typename H, void (*Destroy)(VkDevice, H, const VkAllocationCallbacks*)>
+// Owns one Vulkan handle destroyed with `vkDestroy*(device, h, nullptr)`; Destroy is the function's
+// pointer (core/vk/vulkan_functions.h), read when the handle is released.
+template <typename H, void (VKAPI_PTR** Destroy)(VkDevice, H, const VkAllocationCallbacks*)>
 class Handle {
  public:
   Handle() = default;
@@ -30,7 +31,7 @@ class Handle {
   Handle& operator=(const Handle&) = delete;
   H get() const { return h_; }
   void reset() {
-    if (h_ != VK_NULL_HANDLE) Destroy(device_, h_, nullptr);
+    if (h_ != VK_NULL_HANDLE) (*Destroy)(device_, h_, nullptr);
     h_ = VK_NULL_HANDLE;
   }
 
@@ -39,18 +40,18 @@ class Handle {
   H h_ = VK_NULL_HANDLE;
 };
 
-using ShaderModule = Handle<VkShaderModule, vkDestroyShaderModule>;
-using DescriptorSetLayout = Handle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
-using PipelineLayout = Handle<VkPipelineLayout, vkDestroyPipelineLayout>;
-using Pipeline = Handle<VkPipeline, vkDestroyPipeline>;
-using DescriptorPool = Handle<VkDescriptorPool, vkDestroyDescriptorPool>;
-using RenderPass = Handle<VkRenderPass, vkDestroyRenderPass>;
-using Framebuffer = Handle<VkFramebuffer, vkDestroyFramebuffer>;
-using Sampler = Handle<VkSampler, vkDestroySampler>;
-using QueryPool = Handle<VkQueryPool, vkDestroyQueryPool>;
-using BufferHandle = Handle<VkBuffer, vkDestroyBuffer>;
-using ImageHandle = Handle<VkImage, vkDestroyImage>;
-using ImageViewHandle = Handle<VkImageView, vkDestroyImageView>;
-using MemoryHandle = Handle<VkDeviceMemory, vkFreeMemory>;
+using ShaderModule = Handle<VkShaderModule, &vkDestroyShaderModule>;
+using DescriptorSetLayout = Handle<VkDescriptorSetLayout, &vkDestroyDescriptorSetLayout>;
+using PipelineLayout = Handle<VkPipelineLayout, &vkDestroyPipelineLayout>;
+using Pipeline = Handle<VkPipeline, &vkDestroyPipeline>;
+using DescriptorPool = Handle<VkDescriptorPool, &vkDestroyDescriptorPool>;
+using RenderPass = Handle<VkRenderPass, &vkDestroyRenderPass>;
+using Framebuffer = Handle<VkFramebuffer, &vkDestroyFramebuffer>;
+using Sampler = Handle<VkSampler, &vkDestroySampler>;
+using QueryPool = Handle<VkQueryPool, &vkDestroyQueryPool>;
+using BufferHandle = Handle<VkBuffer, &vkDestroyBuffer>;
+using ImageHandle = Handle<VkImage, &vkDestroyImage>;
+using ImageViewHandle = Handle<VkImageView, &vkDestroyImageView>;
+using MemoryHandle = Handle<VkDeviceMemory, &vkFreeMemory>;
 
 }  // namespace glintlab::core

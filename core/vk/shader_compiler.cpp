@@ -5,10 +5,7 @@
 #include "core/util/content_hash.h"
 #include "core/util/strings.h"
 #include "core/util/data_dir.h"
-
-#include <glslang/Public/ResourceLimits.h>
-#include <glslang/Public/ShaderLang.h>
-#include <glslang/SPIRV/GlslangToSpv.h>
+#include "core/vk/glslang_plugin.h"
 
 #include <cstdlib>
 #include <cstring>
@@ -28,23 +25,6 @@ namespace {
 
 constexpr uint32_t kSpirvMagic = 0x07230203u;
 
-void init_glslang() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    glslang::InitializeProcess();
-    std::atexit([] { glslang::FinalizeProcess(); });
-  });
-}
-
-EShLanguage to_glslang(ShaderStage s) {
-  switch (s) {
-    case ShaderStage::Vertex: return EShLangVertex;
-    case ShaderStage::Fragment: return EShLangFragment;
-    case ShaderStage::Compute: return EShLangCompute;
-  }
-  return EShLangCompute;
-}
-
 const char* stage_name(ShaderStage s) {
   switch (s) {
     case ShaderStage::Vertex: return "vertex";
@@ -61,36 +41,29 @@ std::string read_file(const fs::path& p) {
 
 // Resolves #include "x" as an include alias (kIncludeAliasPrefix) when one
 // is named x, else against the including file's folder, then the shader root.
-class Includer : public glslang::TShader::Includer {
+class Includer {
  public:
   Includer(fs::path root, std::map<std::string, fs::path> aliases)
       : root_(std::move(root)), aliases_(std::move(aliases)) {}
 
-  IncludeResult* includeLocal(const char* name, const char* includer, size_t /*depth*/) override {
+  bool operator()(const std::string& name, const std::string& includer, std::string& path, std::string& text) const {
     if (auto a = aliases_.find(name); a != aliases_.end()) {
       fs::path p = a->second.is_absolute() ? a->second : root_ / a->second;
-      return fs::is_regular_file(p) ? make(p) : nullptr;
+      return fs::is_regular_file(p) && found(p, path, text);
     }
     fs::path from = fs::path(includer).parent_path();
     for (const fs::path& base : {from, root_}) {
       fs::path p = base / name;
-      if (!base.empty() && fs::is_regular_file(p)) return make(p);
+      if (!base.empty() && fs::is_regular_file(p)) return found(p, path, text);
     }
-    return nullptr;
-  }
-  IncludeResult* includeSystem(const char* name, const char* includer, size_t depth) override {  // same search
-    return includeLocal(name, includer, depth);
-  }
-  void releaseInclude(IncludeResult* r) override {
-    if (!r) return;
-    delete static_cast<std::string*>(r->userData);
-    delete r;
+    return false;
   }
 
  private:
-  IncludeResult* make(const fs::path& p) {
-    auto* text = new std::string(read_file(p));
-    return new IncludeResult(p.lexically_normal().string(), text->data(), text->size(), text);
+  static bool found(const fs::path& p, std::string& path, std::string& text) {
+    text = read_file(p);
+    path = p.lexically_normal().string();
+    return true;
   }
   fs::path root_;
   std::map<std::string, fs::path> aliases_;
@@ -126,23 +99,6 @@ std::string preamble(const std::vector<std::string>& defines) {
   return s;
 }
 
-struct Source {
-  std::string path;  // as given to glslang (names the file in errors)
-  std::string text;
-  std::string preamble;
-};
-
-void setup(glslang::TShader& sh, const Source& src, const char** text_ptr, const char** name_ptr, int* len) {
-  *text_ptr = src.text.c_str();
-  *name_ptr = src.path.c_str();
-  *len = int(src.text.size());
-  sh.setStringsWithLengthsAndNames(text_ptr, len, name_ptr, 1);
-  sh.setPreamble(src.preamble.c_str());
-  sh.setEnvInput(glslang::EShSourceGlsl, sh.getStage(), glslang::EShClientVulkan, 100);
-  sh.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
-  sh.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
-}
-
 // glslang logs "ERROR: <file>:<line>: <message>"; keep that form, drop noise.
 std::string format_log(const std::string& log, const std::string& path, const char* stage) {
   std::ostringstream out;
@@ -164,33 +120,24 @@ std::string default_cache_dir() {
   return (base / "glintlab" / "spirv").string();
 }
 
+// The source glslang takes: the file, the preamble of `defines` and the include resolver of `root`.
+glsl::Source load(const std::string& root, const std::string& path, ShaderStage stage,
+                         const std::vector<std::string>& defines) {
+  fs::path p = fs::path(path).is_absolute() ? fs::path(path) : fs::path(root) / path;
+  glsl::Source src;
+  src.path = p.lexically_normal().string();
+  src.text = read_file(p);
+  src.preamble = preamble(defines);
+  src.stage = stage;
+  src.include = Includer(root, include_aliases(defines));
+  return src;
+}
+
 }  // namespace
 
 ShaderCompiler::ShaderCompiler(std::string shader_dir, std::string cache_dir)
     : shader_dir_(shader_dir.empty() ? data_path("shaders") : std::move(shader_dir)),
-      cache_dir_(cache_dir.empty() ? default_cache_dir() : std::move(cache_dir)) {
-  init_glslang();
-}
-
-static Source load(const std::string& root, const std::string& path, const std::vector<std::string>& defines) {
-  fs::path p = fs::path(path).is_absolute() ? fs::path(path) : fs::path(root) / path;
-  return Source{p.lexically_normal().string(), read_file(p), preamble(defines)};
-}
-
-// A glslang shader with its source, preamble and includer set up, ready to
-// preprocess (for the hash) or parse (to compile).
-struct Prepared {
-  Source src;
-  const char* text = nullptr;
-  const char* name = nullptr;
-  int len = 0;
-  glslang::TShader sh;
-  Includer includer;
-  Prepared(const std::string& root, const std::string& path, ShaderStage stage, const std::vector<std::string>& defines)
-      : src(load(root, path, defines)), sh(to_glslang(stage)), includer(root, include_aliases(defines)) {
-    setup(sh, src, &text, &name, &len);
-  }
-};
+      cache_dir_(cache_dir.empty() ? default_cache_dir() : std::move(cache_dir)) {}
 
 std::string words_define(const std::string& name, const void* data, std::size_t bytes) {
   std::string out = name + "=";
@@ -206,12 +153,12 @@ std::string words_define(const std::string& name, const void* data, std::size_t 
 
 std::string ShaderCompiler::source_hash(const std::string& path, ShaderStage stage,
                                         const std::vector<std::string>& defines) {
-  Prepared p(shader_dir_, path, stage, defines);
-  std::string expanded;
-  if (!p.sh.preprocess(GetDefaultResources(), 450, ENoProfile, false, false, EShMsgDefault, &expanded, p.includer))
-    throw ShaderCompileError(format_log(p.sh.getInfoLog(), p.src.path, stage_name(stage)));
+  const glsl::Source src = load(shader_dir_, path, stage, defines);
+  std::string expanded, log;
+  if (!glsl::api().preprocess(src, expanded, log))
+    throw ShaderCompileError(format_log(log, src.path, stage_name(stage)));
   ContentHash h;
-  h.add(std::string_view("glslang-spv1.5-vk1.2")).add(int64_t(stage)).add(p.src.preamble).add(expanded);
+  h.add(std::string_view("glslang-spv1.5-vk1.2")).add(int64_t(stage)).add(src.preamble).add(expanded);
   return h.hex();
 }
 
@@ -233,20 +180,9 @@ CompiledShader ShaderCompiler::compile(const std::string& path, ShaderStage stag
     out.spirv.clear();  // corrupt entry: fall through and rebuild it
   }
 
-  Prepared p(shader_dir_, path, stage, defines);
-  const Source& src = p.src;
-  EShMessages msgs = EShMessages(EShMsgSpvRules | EShMsgVulkanRules);
-  if (!p.sh.parse(GetDefaultResources(), 450, false, msgs, p.includer))
-    throw ShaderCompileError(format_log(p.sh.getInfoLog(), src.path, stage_name(stage)));
-  glslang::TProgram program;
-  program.addShader(&p.sh);
-  if (!program.link(msgs)) throw ShaderCompileError(format_log(program.getInfoLog(), src.path, stage_name(stage)));
-  glslang::SpvOptions opt;
-  opt.validate = false;
-  opt.disableOptimizer = true;
-  spv::SpvBuildLogger logger;
-  glslang::GlslangToSpv(*program.getIntermediate(to_glslang(stage)), out.spirv, &logger, &opt);
-  if (out.spirv.empty()) throw ShaderCompileError(src.path + ": SPIR-V generation failed: " + logger.getAllMessages());
+  const glsl::Source src = load(shader_dir_, path, stage, defines);
+  std::string log;
+  if (!glsl::api().compile(src, out.spirv, log)) throw ShaderCompileError(format_log(log, src.path, stage_name(stage)));
 
   if (!cached.empty()) {
     try {  // a cache that cannot be written only costs time

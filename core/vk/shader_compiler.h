@@ -1,4 +1,5 @@
-// Run-time GLSL -> SPIR-V with glslang: #include resolved against the shader
+// Run-time GLSL -> SPIR-V with glslang (libglintlab_glslang.so, core/vk/glslang_plugin.h, loaded by
+// the first shader preprocessed): #include resolved against the shader
 // tree (and the including file's folder), defines as "NAME" or "NAME=VALUE",
 // errors reported as file:line, and SPIR-V cached on disk by the hash of the
 // fully preprocessed source (so an edit in any include invalidates it).

@@ -49,6 +49,7 @@ std::string lower(std::string s) {
 }
 
 bool layer_available(const char* name) {
+  vulkan::load_vulkan();
   uint32_t n = 0;
   vkEnumerateInstanceLayerProperties(&n, nullptr);
   std::vector<VkLayerProperties> layers(n);
@@ -59,6 +60,7 @@ bool layer_available(const char* name) {
 }
 
 VkInstance create_instance(bool validation, const VkDebugUtilsMessengerCreateInfoEXT* messenger_info) {
+  vulkan::load_vulkan();  // the first instance of the process loads the Vulkan loader
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "glintlab";
   app.apiVersion = VK_API_VERSION_1_2;

@@ -4,7 +4,7 @@
 // in the style of Sascha Willems' renderheadless, with small RAII helpers.
 #pragma once
 
-#include <vulkan/vulkan.h>
+#include "core/vk/vulkan_functions.h"
 
 #include <functional>
 #include <mutex>

@@ -17,7 +17,12 @@ void add_stress_command(CLI::App& app, int& exit_code);    // stress (experiment
 void add_tune_command(CLI::App& app, int& exit_code);      // tune (experiments/tune/)
 void add_glint_test_command(CLI::App& app, int& exit_code);  // glint-test (experiments/glint_test/)
 
-// Every command above, in the order `glintlab --help` lists them (main, and the options fuzzer).
+// Every command above, in the order `glintlab --help` lists them (the options fuzzer).
 void add_all_commands(CLI::App& app, int& exit_code);
+
+// What main adds: where the first argument names a command, that command alone (a process builds the
+// options of the one command it runs, not of all nine: a fifth of `compare`'s start-up on a small image
+// pair), else every command (`--help`, `--version`, a misspelt name: all answer as before).
+void add_commands_for(CLI::App& app, int& exit_code, int argc, const char* const* argv);
 
 }  // namespace glintlab

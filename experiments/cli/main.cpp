@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   }, "print the version, the commit and the data folder, and exit");
   app.require_subcommand(1);
   int exit_code = glintlab::kExitOk;
-  glintlab::add_all_commands(app, exit_code);
+  glintlab::add_commands_for(app, exit_code, argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

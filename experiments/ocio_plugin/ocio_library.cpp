@@ -99,6 +99,41 @@ class OcioConfig final : public Config {
       throw std::runtime_error(e.what());
     }
   }
+  std::vector<std::pair<std::string, std::string>> names() const override {
+    std::vector<std::pair<std::string, std::string>> out;
+    const int n = config_->getNumColorSpaces(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ALL);
+    for (int i = 0; i < n; ++i) {
+      const char* name = config_->getColorSpaceNameByIndex(OCIO::SEARCH_REFERENCE_SPACE_ALL, OCIO::COLORSPACE_ALL, i);
+      OCIO::ConstColorSpaceRcPtr cs = config_->getColorSpace(name);
+      out.emplace_back(name, name);
+      for (size_t a = 0; a < cs->getNumAliases(); ++a) out.emplace_back(cs->getAlias(a), name);
+    }
+    for (int i = 0; i < config_->getNumRoles(); ++i) {
+      const char* role = config_->getRoleName(i);
+      if (std::string c = canonical_name(role); !c.empty()) out.emplace_back(role, c);
+    }
+    return out;
+  }
+  bool matrix_steps(const std::string& src, const std::string& dst, std::vector<MatrixStep>& steps) const override {
+    try {
+      // The steps getDefaultCPUProcessor() renders: the default optimisation of the same processor.
+      OCIO::ConstProcessorRcPtr p =
+          config_->getProcessor(src.c_str(), dst.c_str())->getOptimizedProcessor(OCIO::OPTIMIZATION_DEFAULT);
+      OCIO::GroupTransformRcPtr group = p->createGroupTransform();
+      steps.clear();
+      for (int i = 0; i < group->getNumTransforms(); ++i) {
+        auto m = OCIO::DynamicPtrCast<const OCIO::MatrixTransform>(group->getTransform(i));
+        if (!m || m->getDirection() != OCIO::TRANSFORM_DIR_FORWARD) return false;
+        MatrixStep step;
+        m->getMatrix(step.m.data());
+        m->getOffset(step.offset.data());
+        steps.push_back(step);
+      }
+      return true;
+    } catch (const OCIO::Exception& e) {
+      throw std::runtime_error(e.what());
+    }
+  }
 
  private:
   OCIO::ConstConfigRcPtr config_;

@@ -3,7 +3,6 @@
 
 #include "metrics/color/image_io.h"
 
-#include <Imath/half.h>
 #include <OpenEXR/openexr.h>
 #include <libdeflate.h>
 
@@ -114,11 +113,7 @@ void halves_to_floats(const std::uint8_t* src, float* dst, size_t stride, size_t
   static const bool f16c = cpu_has_f16c();
   if (f16c) return halves_to_floats_f16c(src, dst, stride, n);
 #endif
-  for (size_t x = 0; x < n; ++x) {
-    Imath::half h;
-    h.setBits(std::uint16_t(src[2 * x] | (src[2 * x + 1] << 8)));
-    dst[x * stride] = float(h);
-  }
+  for (size_t x = 0; x < n; ++x) dst[x * stride] = half_bits_to_float(std::uint16_t(src[2 * x] | (src[2 * x + 1] << 8)));
 }
 
 // The common layout: a line's planes (one per channel) to the four channels of RGBA pixels, four
@@ -353,8 +348,24 @@ bool read_part(exr_const_context_t c, int p, const PartLayout& part, const LineC
 
 }  // namespace
 
+float half_bits_to_float(std::uint16_t h) {
+  const std::uint32_t sign = std::uint32_t(h & 0x8000u) << 16, exponent = (h >> 10) & 0x1fu, mantissa = h & 0x3ffu;
+  std::uint32_t bits;
+  if (exponent == 0x1f) {
+    bits = sign | 0x7f800000u | (mantissa << 13);  // infinity, or NaN with its payload
+  } else if (exponent != 0) {
+    bits = sign | ((exponent + 112u) << 23) | (mantissa << 13);  // rebias 15 -> 127
+  } else {
+    const float subnormal = float(mantissa) * 0x1p-24f;  // mantissa 2^-24 (or a zero), exact in float
+    std::memcpy(&bits, &subnormal, 4);
+    bits |= sign;
+  }
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+
 bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out) {
-  static_assert(sizeof(Imath::half) == 2, "half is two bytes");
   if (!little_endian_host()) return false;
   Context ctx;
   std::uint64_t file_size = 0;

@@ -11,6 +11,7 @@
 
 #include "core/util/image.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ namespace glintlab {
 // written; false when the file is not one this path reads, or is damaged: then
 // read it with OpenImageIO, which names what is wrong with a damaged file.
 bool read_exr_scanlines(const std::string& path, const std::vector<std::string>& channels, Image& out);
+
+// The float of an IEEE 754 binary16 (OpenEXR's half), exactly, infinities and NaN payloads kept: what
+// reads half channels on a processor without F16C.
+float half_bits_to_float(std::uint16_t bits);
 
 // What makes the OpenEXR file at `path` incomplete, "" when nothing does: every chunk of every
 // scanline part must lie within the file (a file cut short, as a writer killed mid-write leaves it,

@@ -3,6 +3,7 @@
 
 #include "core/util/data_dir.h"
 #include "core/util/ocio_plugin.h"
+#include "metrics/color/color_bake.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,10 +14,36 @@
 namespace glintlab::metrics {
 
 // The config and one processor per (from, to) or (from, display, view): conversions happen every frame.
+// Where the config's bake is valid (metrics/color/color_bake.h), OpenColorIO is loaded only for what the
+// bake does not hold.
 struct ColorManager::Impl {
-  std::unique_ptr<ocio::Config> config;
+  std::string path;
+  const BakedConfig* bake = nullptr;  // the compiled bake, where it is this config's
+  mutable std::once_flag once;
+  mutable std::unique_ptr<ocio::Config> loaded;
   mutable std::mutex mutex;
   mutable std::map<std::string, std::shared_ptr<const ocio::Processor>> processors;
+
+  // The config through OpenColorIO, loaded by the first call (libglintlab_ocio.so: IoError when it
+  // cannot be loaded; std::runtime_error naming the file when OpenColorIO rejects it).
+  const ocio::Config& config() const {
+    std::call_once(once, [this] {
+      const ocio::Api& api = ocio::api();
+      try {
+        loaded = api.load(path);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error("OCIO config '" + path + "' cannot be loaded: " + e.what());
+      }
+    });
+    return *loaded;
+  }
+
+  // The canonical name of `name` as the bake knows it, else as OpenColorIO does ("" for none).
+  std::string lookup(const std::string& name) const {
+    if (bake)
+      if (const char* canonical = bake->canonical(name)) return canonical;
+    return name.empty() ? "" : config().canonical_name(name);
+  }
 
   // The processor under `key`, made by `make` the first time.
   template <class Make>
@@ -56,34 +83,29 @@ ColorManager::ColorManager(const std::string& config_path)
   if (!std::filesystem::is_regular_file(config_path, ec))
     throw std::runtime_error("OCIO config '" + config_path + "': no such file" +
                              (std::getenv("OCIO") ? " (from $OCIO)" : ""));
-  const ocio::Api& api = ocio::api();  // libglintlab_ocio.so, loaded now (IoError when it cannot be)
-  try {
-    impl_->config = api.load(config_path);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error("OCIO config '" + config_path + "' cannot be loaded: " + e.what());
-  }
+  impl_->path = config_path;
+  impl_->bake = bake_for(config_path);
+  if (!impl_->bake) impl_->config();  // no bake: OpenColorIO loads and validates the config now
 }
 
 ColorManager::~ColorManager() = default;
 
-bool ColorManager::has_space(const std::string& name) const {
-  return !impl_->config->canonical_name(name).empty();
-}
+bool ColorManager::has_space(const std::string& name) const { return !impl_->lookup(name).empty(); }
 
-std::vector<std::string> ColorManager::spaces() const { return impl_->config->spaces(); }
+std::vector<std::string> ColorManager::spaces() const { return impl_->config().spaces(); }
 
 std::string ColorManager::canonical_name(const std::string& name) const {
-  std::string canonical = impl_->config->canonical_name(name);
+  std::string canonical = impl_->lookup(name);
   if (canonical.empty())
     throw std::invalid_argument("unknown colour space '" + name + "' in OCIO config '" + config_path_ +
                                 "'; allowed: " + join(spaces()));
   return canonical;
 }
 
-std::vector<std::string> ColorManager::displays() const { return impl_->config->displays(); }
+std::vector<std::string> ColorManager::displays() const { return impl_->config().displays(); }
 
 std::vector<std::string> ColorManager::views(const std::string& display) const {
-  return impl_->config->views(display);
+  return impl_->config().views(display);
 }
 
 void ColorManager::convert(Image& img, const std::string& from, const std::string& to) const {
@@ -92,8 +114,10 @@ void ColorManager::convert(Image& img, const std::string& from, const std::strin
   const std::string dst = canonical_name(to);
   if (src == dst) return;
   const auto cpu = impl_->cached(src + '\x1f' + dst, [&] {
+    if (impl_->bake)
+      if (const BakedConversion* baked = impl_->bake->conversion(src, dst)) return baked_processor(*baked);
     try {
-      return impl_->config->processor(src, dst);
+      return impl_->config().processor(src, dst);
     } catch (const std::runtime_error& e) {
       throw std::runtime_error("OCIO config '" + config_path_ + "': no conversion '" + src + "' -> '" + dst +
                                "': " + e.what());
@@ -129,7 +153,7 @@ Image ColorManager::display(const Image& scene, const std::string& from_space, c
                                 config_path_ + "'; allowed: " + join(vs));
   const auto cpu = impl_->cached("display\x1f" + src + '\x1f' + display + '\x1f' + view, [&] {
     try {
-      return impl_->config->display_processor(src, display, view);
+      return impl_->config().display_processor(src, display, view);
     } catch (const std::runtime_error& e) {
       throw std::runtime_error("OCIO config '" + config_path_ + "': no display transform '" + src + "' -> '" +
                                display + "' / '" + view + "': " + e.what());
@@ -143,7 +167,7 @@ Image ColorManager::display(const Image& scene, const std::string& from_space, c
 Image ColorManager::display_referred_xyz(const Image& scene, const std::string& from_space, const std::string& display,
                                          const std::string& view) const {
   Image out = this->display(scene, from_space, display, view);  // validates display and view
-  const std::string encoded = impl_->config->display_view_space(display, view);
+  const std::string encoded = impl_->config().display_view_space(display, view);
   if (encoded.empty())
     throw std::invalid_argument("view '" + view + "' of display '" + display + "' in OCIO config '" + config_path_ +
                                 "' names no display colour space to decode");

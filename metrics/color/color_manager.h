@@ -1,8 +1,11 @@
 // Colour management through OpenColorIO: every colour conversion of glintlab goes through the
 // shipped config (metrics/color/ocio/config.ocio) or the one named by $OCIO. Metrics consume images in
 // CIE XYZ D65 with Y = 1 for scene white (to_xyz_d65); PNG previews go through a display/view.
-// OpenColorIO itself is called from libglintlab_ocio.so (core/util/ocio_plugin.h), which the first
-// ColorManager loads: a process that makes none never loads OpenColorIO.
+// OpenColorIO itself is called from libglintlab_ocio.so (core/util/ocio_plugin.h), loaded by a
+// ColorManager when it needs OpenColorIO's answer: at once for a config without a valid bake, and only
+// for what the bake does not hold where it has one (metrics/color/color_bake.h: names and the matrix
+// conversions between linear spaces, equal to OpenColorIO's to the bit). A process that converts no
+// colour never loads OpenColorIO.
 #pragma once
 
 #include <array>
@@ -24,7 +27,8 @@ inline constexpr const char* kXyzD65DisplaySpace = "CIE-XYZ-D65 display";  // th
 
 class ColorManager {
  public:
-  // Loads and validates an OCIO config; throws std::runtime_error naming the file on failure.
+  // Loads and validates an OCIO config (OpenColorIO does, unless the bake beside it is valid: then it was
+  // valid when baked); throws std::runtime_error naming the file on failure.
   explicit ColorManager(const std::string& config_path);
   // Loads default_config_path().
   ColorManager();

@@ -14,10 +14,11 @@ linked with BIND_NOW, so a missing symbol fails at load, and a call into a stub 
 with SIGILL. LibTIFF and FreeType stay real: the catalogue opens a TIFF reader, and the contact
 sheet's labels are drawn with FreeType. glibc stays the machine's own (the version the bundle needs
 is printed and checked by run.sh); libstdc++ and libgcc_s go into lib-fallback/, used only where the
-machine's are older than the ones the binaries were built against. libglintlab_oiio.so and
-libglintlab_ocio.so, which the programs load with dlopen when they first read or write an image
-through OpenImageIO (core/util/oiio_plugin.h) or load a colour configuration (core/util/ocio_plugin.h),
-go into lib/ with their closures.
+machine's are older than the ones the binaries were built against. libglintlab_oiio.so,
+libglintlab_ocio.so and libglintlab_glslang.so, which the programs load with dlopen when they first
+read or write an image through OpenImageIO (core/util/oiio_plugin.h), load a colour configuration
+(core/util/ocio_plugin.h) or compile a shader (core/vk/glslang_plugin.h), go into lib/ with their
+closures.
 
     tests/bench/gpu_bundle.py [--build build] [--out .gpu] [--debs] [--check]
 
@@ -54,8 +55,11 @@ STUB = re.compile(r"^lib(opencv_(?!(core|imgproc|video)\.so)|dcm|oflog|ofstd|i2d
                   r"swresample|postproc|heif|openvdb|raw|raw_r|gif|openjp2|webp|webpdemux|webpmux|sharpyuv|"
                   r"gdal)[^/]*\.so")
 PROGRAMS = ["glintlab", "glintlab_bench"]
-# Loaded with dlopen (core/util/oiio_plugin.h, ocio_plugin.h): found in lib/ by --library-path.
-PLUGINS = ["libglintlab_oiio.so", "libglintlab_ocio.so"]
+# Loaded with dlopen (core/util/oiio_plugin.h, ocio_plugin.h, core/vk/glslang_plugin.h): found in lib/
+# by --library-path.
+PLUGINS = ["libglintlab_oiio.so", "libglintlab_ocio.so", "libglintlab_glslang.so"]
+# Opened with dlopen by name, not named by any ELF: the Vulkan loader (core/vk/vulkan_functions.h).
+DLOPENED = ["libvulkan.so.1"]
 CTOR_DTOR = re.compile(r"^_ZN.*(C[123]|D[012])E")  # Itanium-mangled constructors and destructors
 
 
@@ -184,7 +188,7 @@ def build(args):
     for d in ("bin", "lib", "lib-fallback", "work"):
         os.makedirs(os.path.join(top, d))
     # the closure, stopping at stubs and the system's libraries
-    kept, stubs, queue = {}, {}, [n for p in programs + plugins for n in needed(p)]
+    kept, stubs, queue = {}, {}, [n for p in programs + plugins for n in needed(p)] + DLOPENED
     while queue:
         so = queue.pop()
         if so in SYSTEM or so in kept or so in stubs:

@@ -42,13 +42,13 @@ recommends=$(sed -n 's/^ Recommends: //p' <<<"$info" | tr ',' '\n' | sed 's/^ */
 [ -n "$recommends" ] || fail "dpkg-deb -I: no Recommends"
 bad=$(grep -E -- '-dev$|^(gcc|g\+\+|clang|cpp|cmake|build-essential|libstdc\+\+-[0-9]+-dev)' <<<"$depends"$'\n'"$recommends" || true)
 [ -z "$bad" ] || fail "Depends or Recommends names build-time packages: $bad"
-# Every library the program, its Python module and libglintlab_ocio.so (which every colour conversion
-# loads) name (ELF NEEDED) belongs to a package it depends on, where dpkg knows it; those of the two
+# Every library the program, its Python module, libglintlab_ocio.so (which every colour conversion
+# loads) and libglintlab_glslang.so (which every render loads) name (ELF NEEDED) belongs to a package it depends on, where dpkg knows it; those of the two
 # libraries some commands load (core/util/plugin.h: OpenImageIO, OpenCV) to one it depends on or
 # recommends.
 if command -v dpkg >/dev/null && command -v ldd >/dev/null && command -v readelf >/dev/null; then
   for elf in "$build/glintlab" "$build"/python/glintlab/_core*.so "$build/libglintlab_oiio.so" \
-    "$build/libglintlab_flow.so" "$build/libglintlab_ocio.so"; do
+    "$build/libglintlab_flow.so" "$build/libglintlab_ocio.so" "$build/libglintlab_glslang.so"; do
     case $elf in
       */libglintlab_oiio.so | */libglintlab_flow.so) allowed=$depends$'\n'$recommends; list="Depends or Recommends" ;;
       *) allowed=$depends; list="Depends" ;;
@@ -87,7 +87,8 @@ for f in ./usr/bin/glintlab ./usr/share/glintlab/shaders/passes/surface.vert ./u
   ./usr/share/glintlab/experiments/data/thesis/fig6-7-hdri-match.json \
   ./usr/share/glintlab/experiments/report/glintlab_report.py ./usr/share/glintlab/experiments/tune/glintlab_tune.py \
   ./usr/share/glintlab/metrics/color/ocio/config.ocio ./usr/lib/python3/dist-packages/glintlab/__init__.py \
-  ./usr/lib/glintlab/libglintlab_oiio.so ./usr/lib/glintlab/libglintlab_flow.so ./usr/lib/glintlab/libglintlab_ocio.so; do
+  ./usr/lib/glintlab/libglintlab_oiio.so ./usr/lib/glintlab/libglintlab_flow.so ./usr/lib/glintlab/libglintlab_ocio.so \
+  ./usr/lib/glintlab/libglintlab_glslang.so; do
   grep -qx "$f" <<<"$files" || fail "the package lacks $f"
 done
 grep -Eqx '\./usr/lib/python3/dist-packages/glintlab/_core\.cpython-[0-9]+-[a-z0-9_]+-linux-gnu\.so' <<<"$files" ||

@@ -773,5 +773,5 @@ TEST(SandParams, GpuStructMatchesGlslStd140Offsets) {
     ASSERT_GE(block, 0);
     EXPECT_EQ(prog.getUniformBlock(block).size, int(sizeof(core::SandParamsGPU)));
   }
-  // no FinalizeProcess: the process-wide shader compiler shares glslang's state
+  // no FinalizeProcess: other tests of this process may call glslang too
 }
