@@ -14,8 +14,8 @@
 
 namespace glintlab {
 
-// dlopen(library), then the table its extern "C" function `symbol` returns, whose first member is an
-// int version that must equal `version`. IoError naming the library, `what` it is for, dlerror()'s
+// dlopen(library), then the table its extern "C" function `const void* symbol()` returns, whose first
+// member is an int version that must equal `version`. IoError naming the library, `what` it is for, dlerror()'s
 // reason and the Debian `packages` whose libraries it needs (glintlab's package recommends them, so an
 // install without its recommendations lacks them) when it cannot be loaded, or when it is not this
 // glintlab's (no such function, another version).

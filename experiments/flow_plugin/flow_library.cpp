@@ -53,7 +53,8 @@ void set_threads(int n) { cv::setNumThreads(n); }
 
 }  // namespace glintlab::flow
 
-extern "C" __attribute__((visibility("default"))) const glintlab::flow::Api* glintlab_flow_api() {
+// The table, untyped: load_plugin (core/util/plugin.h) calls every plugin's function as const void* ().
+extern "C" __attribute__((visibility("default"))) const void* glintlab_flow_api() {
   using namespace glintlab::flow;
   static const Api api{kApiVersion, &geometry, &calc, &set_threads};
   return &api;

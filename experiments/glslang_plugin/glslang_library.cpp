@@ -112,7 +112,8 @@ bool compile(const Source& src, std::vector<std::uint32_t>& spirv, std::string& 
 }  // namespace
 }  // namespace glintlab::glsl
 
-extern "C" __attribute__((visibility("default"))) const glintlab::glsl::Api* glintlab_glslang_api() {
+// The table, untyped: load_plugin (core/util/plugin.h) calls every plugin's function as const void* ().
+extern "C" __attribute__((visibility("default"))) const void* glintlab_glslang_api() {
   using namespace glintlab::glsl;
   static const Api api{kApiVersion, &preprocess, &compile};
   return &api;

@@ -152,7 +152,8 @@ std::unique_ptr<Config> load(const std::string& path) {
 }  // namespace
 }  // namespace glintlab::ocio
 
-extern "C" __attribute__((visibility("default"))) const glintlab::ocio::Api* glintlab_ocio_api() {
+// The table, untyped: load_plugin (core/util/plugin.h) calls every plugin's function as const void* ().
+extern "C" __attribute__((visibility("default"))) const void* glintlab_ocio_api() {
   static const glintlab::ocio::Api api{glintlab::ocio::kApiVersion, &glintlab::ocio::load};
   return &api;
 }

@@ -338,7 +338,8 @@ Image make_contact_sheet(const std::vector<std::vector<SheetTile>>& rows, int ma
 }  // namespace
 }  // namespace glintlab::oiio
 
-extern "C" __attribute__((visibility("default"))) const glintlab::oiio::Api* glintlab_oiio_api() {
+// The table, untyped: load_plugin (core/util/plugin.h) calls every plugin's function as const void* ().
+extern "C" __attribute__((visibility("default"))) const void* glintlab_oiio_api() {
   using namespace glintlab::oiio;
   static const Api api{kApiVersion,          &read_image,       &write_exr,          &write_png,
                        &frame_parts,         &read_frame_channels, &read_environment, &make_contact_sheet,
