@@ -40,6 +40,8 @@ DataLocations locate_data(const std::string& data_env, const std::string& result
   DataLocations out;
   const bool in_build_tree =
       !executable.empty() && is_inside(fs::path(executable).parent_path(), GLINTLAB_BUILD_BINARY_DIR);
+  fs::path prefix = fs::path(executable);  // the installation prefix, `depth` folders above the program
+  for (int i = 0; i <= depth; ++i) prefix = prefix.parent_path();
   if (!data_env.empty()) {
     out.data = data_env;
     out.why = "$GLINTLAB_DATA_DIR";
@@ -47,10 +49,8 @@ DataLocations locate_data(const std::string& data_env, const std::string& result
     out.data = GLINTLAB_BUILD_SOURCE_DIR;
     out.why = "the source tree of the build folder " GLINTLAB_BUILD_BINARY_DIR ", where this program is";
   } else if (!executable.empty()) {
-    fs::path prefix = fs::path(executable);
     std::string up;
     for (int i = 0; i < depth; ++i) up += "../";
-    for (int i = 0; i <= depth; ++i) prefix = prefix.parent_path();
     out.data = (prefix / "share" / "glintlab").lexically_normal().string();
     out.why = up + "share/glintlab beside " + (depth == 1 ? "the executable " : "") + executable;
   } else {
@@ -60,8 +60,6 @@ DataLocations locate_data(const std::string& data_env, const std::string& result
   if (in_build_tree) {
     out.plugins = GLINTLAB_BUILD_BINARY_DIR;
   } else if (!executable.empty()) {
-    fs::path prefix = fs::path(executable);
-    for (int i = 0; i <= depth; ++i) prefix = prefix.parent_path();
     out.plugins = (prefix / "lib" / "glintlab").lexically_normal().string();
   }
   if (!results_env.empty())

@@ -18,6 +18,14 @@ inline std::string join(const std::vector<std::string>& items, const char* sep =
   return s;
 }
 
+// `s` with A-Z as a-z and every other byte as it is (how OpenColorIO, file extensions and device names
+// compare without regard to case here; no locale).
+inline std::string ascii_lower(std::string s) {
+  for (char& c : s)
+    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
+  return s;
+}
+
 // A file's whole content, or nullopt when it cannot be opened (the caller says what it is in its error).
 inline std::optional<std::string> read_text_file(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -1,10 +1,11 @@
 #include "core/vk/vk_context.h"
 
+#include "core/util/strings.h"
+
 #include <memory>
 #include <type_traits>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -43,13 +44,7 @@ std::string type_name(VkPhysicalDeviceType t) {
   }
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return s;
-}
-
-bool layer_available(const char* name) {
-  vulkan::load_vulkan();
+bool layer_available(const char* name) {  // (after load_vulkan)
   uint32_t n = 0;
   vkEnumerateInstanceLayerProperties(&n, nullptr);
   std::vector<VkLayerProperties> layers(n);
@@ -174,7 +169,7 @@ VkContext::VkContext(const ContextOptions& options) : validation_(options.valida
     const std::string& sel = options.device;
     if (sel.empty()) {
       for (const auto& i : infos)
-        if (i.type == "cpu" || lower(i.name).find("llvmpipe") != std::string::npos) { chosen = int(i.index); break; }
+        if (i.type == "cpu" || ascii_lower(i.name).find("llvmpipe") != std::string::npos) { chosen = int(i.index); break; }
       if (chosen < 0) chosen = 0;
     } else if (std::all_of(sel.begin(), sel.end(), [](unsigned char c) { return std::isdigit(c); })) {
       unsigned long idx = std::stoul(sel);
@@ -183,7 +178,7 @@ VkContext::VkContext(const ContextOptions& options) : validation_(options.valida
       chosen = int(idx);
     } else {
       for (const auto& i : infos)
-        if (lower(i.name).find(lower(sel)) != std::string::npos) { chosen = int(i.index); break; }
+        if (ascii_lower(i.name).find(ascii_lower(sel)) != std::string::npos) { chosen = int(i.index); break; }
       if (chosen < 0) throw VulkanError("--device " + sel + ": no device name contains it; available:" + describe_all(infos));
     }
     physical_ = devs[chosen];

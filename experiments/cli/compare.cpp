@@ -2,7 +2,6 @@
 #include "core/util/strings.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <exception>
 #include <iomanip>
@@ -220,8 +219,7 @@ CompareFlipSetup checked_flip_setup(const CompareOptions& o, bool want_flip, std
     throw bad_input((!std::isnan(o.ppd) ? std::string("--ppd") : std::string("--monitor-distance/--monitor-width/--monitor-width-pixels")) +
                     " give " + num_str(flip.ppd) + " pixels per degree; allowed: up to " + num_str(metrics::kFlipMaxPpd));
   if (!o.tone_mapper.empty()) {
-    std::string tm = o.tone_mapper;
-    std::transform(tm.begin(), tm.end(), tm.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+    const std::string tm = ascii_lower(o.tone_mapper);
     const auto v = enum_from_name(metrics::kFlipToneMapperNames, tm);
     if (!v)
       throw bad_input("--tone-mapper must be one of " + enum_name_list(metrics::kFlipToneMapperNames) +

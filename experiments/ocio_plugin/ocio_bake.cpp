@@ -45,19 +45,13 @@ std::string exact(double v) {
   return buf;
 }
 
-std::string lower(std::string s) {
-  for (char& c : s)
-    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
-  return s;
-}
-
 std::string bake_source(const std::string& config_path) {
   const std::optional<std::string> bytes = glintlab::read_text_file(config_path);
   if (!bytes) throw std::runtime_error("OCIO config '" + config_path + "': cannot be read");
   std::unique_ptr<glintlab::ocio::Config> config = glintlab::ocio::api().load(config_path);
 
   std::map<std::string, std::string> names;  // sorted, one entry per lower-case name
-  for (const auto& [name, canonical] : config->names()) names.emplace(lower(name), canonical);
+  for (const auto& [name, canonical] : config->names()) names.emplace(glintlab::ascii_lower(name), canonical);
 
   std::string steps, conversions;
   int n_steps = 0, n_conversions = 0;

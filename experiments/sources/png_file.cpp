@@ -7,8 +7,8 @@
 
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 namespace glintlab {

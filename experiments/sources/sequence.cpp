@@ -3,6 +3,7 @@
 #include "core/util/content_hash.h"
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
+#include "core/util/strings.h"
 #include "experiments/sources/exr_scanlines.h"
 #include "metrics/color/measurement_space.h"
 
@@ -35,11 +36,6 @@ const std::set<std::string>& image_extensions() {
   static const std::set<std::string> e = {".exr", ".png", ".tif", ".tiff", ".hdr", ".jpg", ".jpeg", ".dpx",
                                           ".tga", ".bmp", ".pfm", ".ppm", ".pgm", ".webp", ".sxr", ".cin"};
   return e;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 std::string regex_escape(const std::string& s) {
@@ -151,7 +147,7 @@ std::vector<SequenceFrame> list_frames(const SequenceSpec& seq, const std::strin
     std::map<std::pair<std::string, std::string>, int> groups;  // (prefix, suffix) -> smallest digit count
     for (const auto& e : fs::directory_iterator(p, ec)) {
       const std::string name = e.path().filename().string();
-      if (!image_extensions().count(lower(e.path().extension().string()))) continue;
+      if (!image_extensions().count(ascii_lower(e.path().extension().string()))) continue;
       static const std::regex last_number(R"(^(.*?)([0-9]+)([^0-9]*)$)");
       std::smatch m;
       if (!std::regex_match(name, m, last_number) || m[2].length() > 9) continue;
@@ -170,7 +166,7 @@ std::vector<SequenceFrame> list_frames(const SequenceSpec& seq, const std::strin
       for (const auto& [key, width] : groups) stems.insert(key.first + "|" + no_ext(key.second));
       auto exr = std::find_if(groups.begin(), groups.end(), [](const auto& g) {
         const std::string& t = g.first.second;
-        return t.size() >= 4 && lower(t.substr(t.size() - 4)) == ".exr";
+        return t.size() >= 4 && ascii_lower(t.substr(t.size() - 4)) == ".exr";
       });
       if (stems.size() == 1 && exr != groups.end()) {
         const auto keep = *exr;

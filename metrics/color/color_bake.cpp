@@ -140,12 +140,7 @@ const BakedConfig* bake_for(const std::string& config_path) {
   return bytes && core::hash_hex(*bytes) == bake.config_hash ? &bake : nullptr;
 }
 
-std::string bake_key(const std::string& name) {
-  std::string k = name;
-  for (char& ch : k)
-    if (ch >= 'A' && ch <= 'Z') ch = char(ch - 'A' + 'a');
-  return k;
-}
+std::string bake_key(const std::string& name) { return ascii_lower(name); }
 
 std::shared_ptr<const ocio::Processor> baked_processor(const BakedConversion& conversion) {
   return std::make_shared<BakedProcessor>(conversion.steps, conversion.step_count);
