@@ -39,11 +39,6 @@ bool parse_double(const std::string& s, double& v) {
   return in && in.peek() == std::char_traits<char>::eof() && std::isfinite(v);
 }
 
-bool is_identifier(const std::string& s) {
-  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-}
-
 const char* kModelSyntax =
     "// glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic "
     "[fails=CHECK,...]";

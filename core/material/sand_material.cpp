@@ -32,6 +32,12 @@ const Range kSSS{"SSS", 0, 1}, kRs{"R_s", 0, 1}, kT{"T", 0, 1}, kRt{"R_t", 0, 1}
 const Range kLogDensity{"log_density", -3, 14}, kAlphaG{"alpha_g", 1e-3, 1},
     kRelRough{"relative_roughness", 1e-3, 1}, kIntensity{"intensity", 0, 1e6}, kLightCone{"light_cone", 0, 0.5};
 
+}  // namespace
+
+std::vector<std::string> SandParams::glint_vector_keys() { return {kAlphaG.name, kRelRough.name}; }
+
+namespace {
+
 std::string num(double v) {
   std::ostringstream o;
   o << v;

@@ -152,6 +152,8 @@ struct SandParams {
   SandParamsGPU pack() const;
 
   static std::vector<std::string> compat_names();  // bit i = 1 << i
+  // The keys of "glints" whose value is [u, v] (alpha_g, relative_roughness).
+  static std::vector<std::string> glint_vector_keys();
   static std::vector<std::string> debug_output_names();
   // Value of SAND_DEBUG for a debug output name; ConfigError if unknown.
   static int debug_output_define(const std::string& name);

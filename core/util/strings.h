@@ -26,6 +26,15 @@ inline std::string ascii_lower(std::string s) {
   return s;
 }
 
+// A C/GLSL identifier: a letter or '_', then letters, digits and '_' (ASCII; no locale).
+inline bool is_identifier(const std::string& s) {
+  auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  if (s.empty() || !alpha(s[0])) return false;
+  for (char c : s)
+    if (!alpha(c) && !(c >= '0' && c <= '9')) return false;
+  return true;
+}
+
 // A file's whole content, or nullopt when it cannot be opened (the caller says what it is in its error).
 inline std::optional<std::string> read_text_file(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);

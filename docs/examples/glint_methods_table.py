@@ -6,7 +6,9 @@
 One Markdown row per variant: the glint density ratio (test over truth, from the means of both densities),
 the glint histogram EMD, pooled bias and RMS at 2, 8 and 64 px, flicker excess, lag, temporal_error_mc,
 ΔE00 (means over the frames), GPU ms per frame and its ratio to the `beckmann` variant of the same run;
-then each truth's noise floor."""
+then each truth's noise floor. Where the run has a density sweep (summary.json "density_sweep" and
+"matched_density"), two more tables: each method at matched glint density beside its published default,
+and every row of the sweep."""
 import json
 import math
 import sys
@@ -43,6 +45,39 @@ def main(path):
         print(f"\ntruth `{r.get('name', '?')}` noise floor: " + ", ".join(
             f"{k} {fmt(floor.get(k, math.nan))}" for k in ("deltaE2000", "flicker_excess", "temporal_lag",
                                                            "temporal_error_mc")))
+    sweep_tables(summary, variants, mean, fmt)
+
+
+def sweep_tables(summary, variants, mean, fmt):
+    sweep, matched = summary.get("density_sweep") or {}, summary.get("matched_density") or {}
+    if not sweep:
+        return
+    keys = ("glint_density_ratio", "flicker_excess", "temporal_lag", "temporal_error_mc", "deltaE2000", "gpu_ms")
+    head = ["method", "row", "parameter", "glint density ratio", "flicker excess", "lag", "temporal_error_mc",
+            "ΔE00", "GPU ms/frame"]
+    num = lambda x: math.nan if x is None else x
+    print("\nAt matched glint density (the parameter where the ratio is 1, interpolated, then rendered):\n")
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * len(head))
+    for name, m in matched.items():
+        v = variants.get(name, {})
+        ref = mean(v, "glint_density_ref")
+        default = [mean(v, "glint_density_test") / ref if ref > 0 else math.nan] + \
+                  [mean(v, k) for k in keys[1:5]] + [(v.get("gpu_ms") or {}).get("mean", math.nan)]
+        print(f"| `{name}` | published default | | " + " | ".join(fmt(x) for x in default) + " |")
+        if m.get("value") is None:
+            print(f"| `{name}` | not matched | nearest: {m['parameter']} {fmt(num(m.get('nearest_value')))} | "
+                  f"{fmt(num(m.get('nearest_ratio')))} |" + " |" * (len(keys) - 1))
+            continue
+        print(f"| `{name}` | matched ({m.get('how', '')}) | {m['parameter']} {fmt(m['value'])} | " +
+              " | ".join(fmt(num(m.get(k))) for k in keys) + " |")
+    print("\nThe sweep (means over the frames):\n")
+    print("| " + " | ".join(["method"] + head[2:]) + " |")
+    print("|" + "---|" * (len(head) - 1))
+    for name, rows in sweep.items():
+        for r in rows:
+            print(f"| `{name}` | {r['parameter']} {fmt(r['value'])} | " +
+                  " | ".join(fmt(num(r.get(k))) for k in keys) + " |")
 
 
 if __name__ == "__main__":

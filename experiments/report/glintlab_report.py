@@ -57,6 +57,7 @@ try:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 except ImportError:
     _missing.append(("matplotlib", "python3-matplotlib"))
 try:
@@ -579,7 +580,8 @@ def encode_mp4(frames, fps, out_path):
 
 
 # ------------------------------------------------------------------ the report
-SECTIONS = (("pareto", "error vs cost"), ("curves", "per frame"), ("table", "table"), ("crops", "glint crops"),
+SECTIONS = (("pareto", "error vs cost"), ("sweep", "density sweep"), ("curves", "per frame"), ("table", "table"),
+            ("crops", "glint crops"),
             ("sequences", "sequences"), ("glossary", "metrics"), ("files", "files"))
 AA_SYMBOLS = {"none": "●", "ssaa": "■", "taa": "▲"}
 
@@ -695,6 +697,26 @@ class Report:
                                 "floor": self.floor_of(best[2], metric),
                                 "cheapest": by[front[0][2]] if front else None})
         return {"state": "plotted", "svg": svg, "lines": items}
+
+    # ------------------------------------------------------------ density sweep
+    def density_sweep(self):
+        """The sweep's figure and its matched-density rows beside each method's published default, or None."""
+        figs = plot_density_sweep(self)
+        if figs is None:
+            return None
+        rows = []
+        for name, m in (self.summary.get("matched_density") or {}).items():
+            default = next((v for v in self.variants if v["name"] == name), None)
+            ref = self.metric_stat(default, "glint_density_ref") if default else None
+            test = self.metric_stat(default, "glint_density_test") if default else None
+            rows.append({"name": name, "parameter": m.get("parameter"), "value": m.get("value"),
+                         "reason": m.get("reason"), "rounds": m.get("rounds"), "how": m.get("how"),
+                         "nearest_value": m.get("nearest_value"), "nearest_ratio": m.get("nearest_ratio"),
+                         "matched": [m.get(k) for k in SWEEP_METRICS] + [m.get("gpu_ms")],
+                         "default": [test / ref if finite(test) and finite(ref) and ref > 0 else None] +
+                                    [self.metric_stat(default, k) if default else None for k in SWEEP_METRICS[1:]] +
+                                    [stat(default.get("gpu_ms")) if default else None]})
+        return {"figs": figs, "rows": rows, "columns": [label_of(k) for k in SWEEP_METRICS] + ["GPU ms/frame"]}
 
     # ------------------------------------------------------------ per-frame curves
     def curves(self):
@@ -818,7 +840,8 @@ class Report:
         # The crops and sequences (image work in Pillow) run in a forked process while this one draws
         # the plots (matplotlib): on two cores the report takes the longer of the two, not the sum.
         crops = start_crops(self)
-        page = {"pareto": self.pareto(), "curves": self.curves(), "table": self.table()}
+        page = {"pareto": self.pareto(), "sweep": self.density_sweep(), "curves": self.curves(),
+                "table": self.table()}
         page["crops"], crops_files = crops()
         for title, paths in crops_files:
             for rel in paths:
@@ -827,6 +850,7 @@ class Report:
         page["files"] = self.figs.files
         shown = {"pareto", "table", "crops", "glossary", "files"}
         shown |= {"curves"} if page["curves"] is not None else set()
+        shown |= {"sweep"} if page["sweep"] is not None else set()
         shown |= {"sequences"} if page["crops"] is not None else set()
         s = self.summary
         doc = template_env().get_template("page.html.j2").render(
@@ -907,6 +931,83 @@ def plot_curves(rep, metrics):
     fig.legend(handles, labels, loc="center right", frameon=False, fontsize=8 if len(labels) <= 18 else 6.5)
     fig.tight_layout(rect=(0, 0, 0.80, 1))
     return rep.figs.save(fig, "per_frame", "Per-frame flicker ratio and ΔE00")
+
+
+SWEEP_METRICS = ("glint_density_ratio", "flicker_excess", "temporal_error_mc", "deltaE2000")
+
+
+def plain_log_ticks(axis):
+    """A log axis labelled 0.5, 1, 2 (not 5×10⁻¹), minor ticks unlabelled."""
+    axis.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=(0.2, 0.3, 0.5, 0.7, 1.0)))
+    axis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+
+def plot_density_sweep(rep):
+    """The density sweep (summary.json "density_sweep", "matched_density"): per method its glint density
+    ratio against its own parameter, then the errors against the ratio (where methods show as many
+    glints as the truth they are compared at ratio 1), each method's matched-density point as a star, the
+    truth's value (ratio 1, 0 for the errors) with its noise-floor band. Returns the two inline SVGs, or
+    None without a sweep."""
+    s = rep.summary
+    sweep, matched = s.get("density_sweep") or {}, s.get("matched_density") or {}
+    if not sweep:
+        return None
+    floor = ((s.get("references") or [{}])[0].get("floor") or {})
+    colors = variant_colors(list(sweep))
+
+    def points(rows, xkey, ykey):
+        return [(r.get(xkey), r.get(ykey)) for r in rows if finite(r.get(xkey)) and finite(r.get(ykey))
+                and (ykey != "glint_density_ratio" or r[ykey] > 0) and (xkey != "glint_density_ratio" or r[xkey] > 0)]
+
+    def star(ax, name, xkey, ykey):
+        m = matched.get(name) or {}
+        p = points([m], xkey, ykey)
+        if p:
+            ax.plot([p[0][0]], [p[0][1]], marker="*", ms=11, color=colors[name], mec="black", mew=0.6, ls="")
+
+    n = len(sweep)
+    fig1, axes = plt.subplots(1, n, figsize=(2.6 * n + 0.4, 2.9), squeeze=False)
+    for ax, (name, rows) in zip(axes[0], sweep.items()):
+        ax.axhspan(0.8, 1.25, color="0.85", lw=0)
+        ax.axhline(1.0, color="black", lw=1.0, ls=":")
+        p = points(rows, "value", "glint_density_ratio")
+        if p:
+            ax.plot([q[0] for q in p], [q[1] for q in p], lw=1.4, marker="o", ms=3.5, color=colors[name])
+        star(ax, name, "value", "glint_density_ratio")
+        ax.set_yscale("log")
+        plain_log_ticks(ax.yaxis)
+        ax.set_xlabel(rows[0]["parameter"] if rows else "")
+        ax.set_title(name, loc="left", fontsize=9)
+    axes[0, 0].set_ylabel("glint density ratio")
+    fig1.tight_layout()
+    svg1 = rep.figs.save(fig1, "density_sweep_parameter",
+                         "Glint density ratio against each method's density parameter (star: matched)")
+
+    metrics = SWEEP_METRICS[1:]
+    fig, axes = plt.subplots(1, len(metrics), figsize=(3.5 * len(metrics) + 1.6, 3.4), squeeze=False)
+    for ax, metric in zip(axes[0], metrics):
+        ax.axvspan(0.8, 1.25, color="0.9", lw=0)
+        ax.axvline(1.0, color="black", lw=1.0, ls=":")
+        f = floor.get(metric)
+        if isinstance(f, (int, float)) and math.isfinite(f):
+            ax.axhspan(0.0, f, color="0.8", lw=0, label="truth's noise floor")
+        for name, rows in sweep.items():
+            p = sorted(points(rows, "glint_density_ratio", metric))
+            if p:
+                ax.plot([q[0] for q in p], [q[1] for q in p], lw=1.4, marker="o", ms=3.5, color=colors[name],
+                        label=name)
+            star(ax, name, "glint_density_ratio", metric)
+        ax.set_xscale("log")
+        plain_log_ticks(ax.xaxis)
+        ax.set_xlabel("glint density ratio (1 = the truth's)")
+        ax.set_ylim(bottom=0)
+        ax.set_title(label_of(metric), loc="left")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="center right", frameon=False, fontsize=8)
+    fig.tight_layout(rect=(0, 0, 0.84, 1))
+    svg2 = rep.figs.save(fig, "density_sweep", "Error and flicker against glint density (star: matched)")
+    return svg1, svg2
 
 
 def plot_gpu_passes(rep, passes):

@@ -221,6 +221,7 @@ void SummaryWriter::finish() {
       if (v.aa == AaMethod::Taa) e["taa"] = taa_json(v.taa);
       e["debug"] = v.debug;
       e["material"] = v.material_json;  // preset and every override (glints, energy_consistent, ...)
+      if (v.truth_material) e["truth_material"] = v.truth_material_json;
       e["defines"] = pv.program.defines;
     }
     e["reference"] = pv.reference >= 0 ? nlohmann::json(plan_.references[size_t(pv.reference)].name) : nullptr;

@@ -41,7 +41,8 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
       pv.reference = 0;
       plan.references[0].variants.push_back(int(plan.variants.size()));
     } else if (measure) {
-      core::MaterialProgram ref = core::sand_program(pv.params, needs, core::ProgramRole::Reference);
+      pv.truth_params = v.truth_material ? to_working_space(*v.truth_material, spec.working_space, cm) : pv.params;
+      core::MaterialProgram ref = core::sand_program(pv.truth_params, needs, core::ProgramRole::Reference);
       const std::string key = ref.cache_key();
       auto it = std::find(ref_keys.begin(), ref_keys.end(), key);
       if (it == ref_keys.end()) {
@@ -57,7 +58,7 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
   // Names: "reference" alone; else by the truth's glint model ("reference-grains"), and by the first
   // variant where two references share a model.
   auto model_of = [&](const RunPlan::Reference& r) {
-    const core::SandParams truth = plan.variants[size_t(r.variants.front())].params.reference();
+    const core::SandParams truth = plan.variants[size_t(r.variants.front())].truth_params.reference();
     // a user's model file by its file name without the extension
     return truth.glint_file ? std::filesystem::path(truth.glint_model).stem().string() : truth.glint_model;
   };

@@ -23,6 +23,7 @@ struct RunPlan {
   struct Variant {
     const VariantSpec* spec = nullptr;
     core::SandParams params;        // in the working space
+    core::SandParams truth_params;  // what its truth shades: params, or its "truth_material" (measured runs)
     core::MaterialProgram program;  // what its surface pass shades
     int reference = -1;             // index into references; -1 when not measured
     std::optional<FrameFiles> files;  // a frame source ("frames": SEQ): read, not rendered

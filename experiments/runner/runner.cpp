@@ -8,6 +8,7 @@
 #include "core/util/json_check.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
+#include "experiments/runner/density_sweep.h"
 #include "experiments/runner/measure.h"
 #include "experiments/report/report.h"
 #include "experiments/runner/frame_loop.h"
@@ -138,6 +139,7 @@ int size_reference(const RunOptions& opt, const ExperimentSpec& spec, std::ostre
     o.out_dir = (fs::path(opt.out_dir) / "sizing" / ("grid-" + std::to_string(g))).string();
     o.report = false;
     o.images = false;
+    o.density_sweep = false;
     o.reference_grid = g;
     o.resume = opt.resume && fs::exists(fs::path(o.out_dir) / "records.jsonl");
     log << "reference sizing: " << g << "x" << g << " samples per pixel, in " << o.out_dir << "\n";
@@ -266,7 +268,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
   std::string file;
   ExperimentSpec spec;
   file = resolve_experiment_path(opt.experiment);
-  source = read_json_file(file);
+  source = opt.source.is_null() ? read_json_file(file) : opt.source;
   if (opt.width > 0 || opt.height > 0) {
     if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
       throw ConfigError("--resolution: " + std::to_string(opt.width) + "x" + std::to_string(opt.height) +
@@ -298,6 +300,15 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
     summary_extra["reference_sizing"] = sizing;
     log << "reference sizing: the run uses " << grid << "x" << grid << " samples per pixel\n";
     return run_with(sized, log, summary_extra);
+  }
+
+  if (measured && opt.density_sweep && spec.density_sweep.enabled()) {
+    if (opt.shard_count > 1) {
+      log << "error: " << file << ": a density sweep chooses its matched parameters from whole runs; run it "
+          << "unsharded\n";
+      return kExitBadInput;
+    }
+    if (const int status = run_density_sweep(opt, source, spec, log, &summary_extra); status != kExitOk) return status;
   }
 
   const metrics::ColorManager cm = load_color_manager(opt.ocio_config);

@@ -5,6 +5,8 @@
 // summary.json, images and the report from the journal.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <ostream>
 #include <string>
 #include <vector>
@@ -29,6 +31,10 @@ struct RunOptions {
   // "reference": {"floor": ...}, and the run at the grid they chose; recorded as an override).
   int reference_grid = 0;
   bool images = true;         // false: no EXR or PNG (the sizing runs)
+  // Not null: the experiment's JSON instead of the file's content (the runs of a density sweep, whose
+  // variants are derived from the file's); `experiment` still names the file (relative paths, messages).
+  nlohmann::json source;
+  bool density_sweep = true;  // false: skip the experiment's "density_sweep" (the truth's sizing runs)
 };
 
 // Returns the process exit code (experiments/cli/exit_codes.h): 0 ok, 1 a

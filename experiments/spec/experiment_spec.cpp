@@ -2,12 +2,14 @@
 
 #include "core/util/data_dir.h"
 #include "core/util/json_check.h"
+#include "core/util/strings.h"
 #include "metrics/color/measurement_space.h"
 #include "metrics/flip.h"
 #include "metrics/metric_registry.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -107,7 +109,65 @@ core::SandParams parse_material(const nlohmann::json& j, const std::string& file
   return core::SandParams::from_json(r);
 }
 
+// "density_sweep": {VARIANT: {"parameter": NAME, "values": [v0 < v1 < ...]}, ...}. Every derived
+// material is parsed here, so a value outside the parameter's range is refused before any work.
+void read_density_sweep(JsonReader& r, ExperimentSpec& s) {
+  const nlohmann::json& ds = r.raw("density_sweep");
+  const std::string where0 = r.key_path("density_sweep");
+  if (!ds.is_object() || ds.empty())
+    r.fail("density_sweep", "expected an object {VARIANT: {\"parameter\": NAME, \"values\": [increasing]}, ...} "
+                            "naming at least one variant");
+  for (auto it = ds.begin(); it != ds.end(); ++it) {
+    const std::string where = where0 + "." + it.key();
+    auto v = std::find_if(s.variants.begin(), s.variants.end(), [&](const VariantSpec& x) { return x.name == it.key(); });
+    if (v == s.variants.end()) throw ConfigError(s.file + ": " + where + ": no variant of that name");
+    if (!v->frames.empty()) throw ConfigError(s.file + ": " + where + ": a variant read from files has no parameters");
+    if (!it.value().is_object()) r.fail("density_sweep", it.key() + ": expected {\"parameter\": NAME, \"values\": [...]}");
+    JsonReader m(it.value(), s.file, where);
+    DensitySweepSpec::Method method{it.key(), m.get_string("parameter"), {}};
+    if (!is_identifier(method.parameter))
+      m.fail("parameter", "expected the name of a key of \"glints\" (e.g. \"log_density\")");
+    if (m.has("glints")) {
+      method.glints = m.raw("glints");
+      if (!method.glints.is_object()) m.fail("glints", "expected an object of \"glints\" keys set at every value");
+      if (method.glints.contains(method.parameter)) m.fail("glints", "sets the swept \"" + method.parameter + "\"");
+    }
+    const nlohmann::json& values = m.raw("values");
+    if (!values.is_array() || values.size() < 2 || values.size() > 32)
+      m.fail("values", "expected an array of 2 to 32 numbers in increasing order");
+    for (const auto& x : values) {
+      if (!x.is_number() || !std::isfinite(x.get<double>()) ||
+          (!method.values.empty() && !(x.get<double>() > method.values.back())))
+        m.fail("values", "expected an array of 2 to 32 numbers in increasing order, got " + dump_json(values));
+      method.values.push_back(x.get<double>());
+      parse_material(density_sweep_material(*v, method, method.values.back()), s.file, where + ".values");
+    }
+    m.finish();
+    s.density_sweep.methods.push_back(std::move(method));
+  }
+}
+
 }  // namespace
+
+nlohmann::json density_sweep_material(const VariantSpec& v, const DensitySweepSpec::Method& sweep, double value) {
+  nlohmann::json m = v.material_json;
+  if (!m.contains("glints") || !m["glints"].is_object()) m["glints"] = nlohmann::json::object();
+  for (auto it = sweep.glints.begin(); it != sweep.glints.end(); ++it) m["glints"][it.key()] = it.value();
+  const auto vec = core::SandParams::glint_vector_keys();
+  const bool both = std::find(vec.begin(), vec.end(), sweep.parameter) != vec.end();  // [u, v]: the value for both
+  m["glints"][sweep.parameter] = both ? nlohmann::json::array({value, value}) : nlohmann::json(value);
+  return m;
+}
+
+std::string density_sweep_problem(const ExperimentSpec& s, const VariantSpec& v, const DensitySweepSpec::Method& m,
+                                  double value) {
+  try {
+    parse_material(density_sweep_material(v, m, value), s.file, "density_sweep." + v.name);
+    return "";
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+}
 
 ExperimentSpec ExperimentSpec::load(const std::string& file) { return from_json(read_json_file(file), file); }
 
@@ -164,13 +224,19 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
       v.taa = parse_taa(tr);
     }
     v.debug = vr.get_enum("debug", "final", core::SandParams::debug_output_names());
-    v.material_json = s.material_json;
-    if (vr.has("material")) {
-      const nlohmann::json& over = vr.raw("material");
-      if (!over.is_object()) vr.fail("material", "expected an object of material overrides");
-      for (auto it = over.begin(); it != over.end(); ++it) v.material_json[it.key()] = it.value();
-    }
+    auto merged = [&](const char* key) {  // the experiment's material with the variant's overrides of `key`
+      nlohmann::json m = s.material_json;
+      const nlohmann::json& over = vr.raw(key);
+      if (!over.is_object()) vr.fail(key, "expected an object of material overrides");
+      for (auto it = over.begin(); it != over.end(); ++it) m[it.key()] = it.value();
+      return m;
+    };
+    v.material_json = vr.has("material") ? merged("material") : s.material_json;
     v.material = parse_material(v.material_json, file, vr.key_path("material"));
+    if (vr.has("truth_material")) {
+      v.truth_material_json = merged("truth_material");
+      v.truth_material = parse_material(v.truth_material_json, file, vr.key_path("truth_material"));
+    }
     vr.finish();
     s.variants.push_back(std::move(v));
   }
@@ -210,6 +276,7 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     }
   }
   read_common(r, s);
+  if (r.has("density_sweep")) read_density_sweep(r, s);
   r.finish();
   for (const auto& [m, fraction] : s.reference.floor_target) {  // a floor of a metric the run measures
     const auto per_pixel = metrics::metric_names();

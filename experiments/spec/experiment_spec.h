@@ -14,7 +14,8 @@
 //                          "space": "ycocg", "history_filter": "catmull_rom", "dering": false,
 //                          "velocity": "longest", "feedback": "karis", "hdr": "none", "anti_flicker": false,
 //                          "disocclusion": false, "disocclusion_tolerance": 0.05},  // taa only; defaults = Falcor
-//                  "debug": "final" | <debug output>, "material": {<overrides>}} ],
+//                  "debug": "final" | <debug output>, "material": {<overrides>},
+//                  "truth_material": {<overrides>}} ],   // its truth's material, if not "material"
 //   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
 //   "metrics": ["deltaE2000", "deltaEITP", "flip", "psnr", "relative"],  // and the groups "flicker",
 //              "glints", "pooled": none named = every group, else flicker and the named ones
@@ -22,7 +23,10 @@
 //                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67.0206},
 //   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "ACES 1.0 SDR-video",
 //              "exposure": 0 (stops, previews only),
-//              "contact_sheet": false, "contact_sheet_columns": 8}
+//              "contact_sheet": false, "contact_sheet_columns": 8},
+//   "density_sweep": {"zirr": {"parameter": "log_density",   // a key of "glints" (optional;
+//                              "values": [5, 5.5, 6, ...],   //  experiments/runner/density_sweep.h)
+//                              "glints": {...}}}             // fixed at every value (optional)
 // }
 #pragma once
 
@@ -39,6 +43,7 @@
 
 #include <climits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +65,10 @@ struct VariantSpec {
   std::string debug = "final";
   core::SandParams material;  // experiment material + this variant's overrides
   nlohmann::json material_json;  // the merged object (for hashing and the summary)
+  // "truth_material": {overrides}: the material its truth is rendered with where it is not `material`
+  // (the variants of a density sweep: a model at another density, against the experiment's truth).
+  std::optional<core::SandParams> truth_material;
+  nlohmann::json truth_material_json;  // merged over the experiment's material, as "material"
   nlohmann::json taa_json;       // the "taa" object as given (for the summary)
   std::string frames;            // a frame source: the SEQ its frames are read from (experiments/sources/sequence.h)
   std::string frames_space;      // its OCIO space ("" = the files' tag, else scene_linear)
@@ -107,6 +116,21 @@ struct OutputSpec {
   bool halves = false;
 };
 
+// "density_sweep": each named variant rendered again at every value of one parameter of its "glints"
+// (glintlab's common ones, e.g. log_density, or its model's own: the method's density parameter),
+// measured against the run's truth, and at the value where its glint density matches the truth's
+// (experiments/runner/density_sweep.h).
+struct DensitySweepSpec {
+  struct Method {
+    std::string variant;
+    std::string parameter;
+    std::vector<double> values;  // strictly increasing, at least 2
+    nlohmann::json glints = nlohmann::json::object();  // "glints": set at every value (not in the truth)
+  };
+  std::vector<Method> methods;  // by variant name (JSON object order)
+  bool enabled() const { return !methods.empty(); }
+};
+
 struct ExperimentSpec {
   std::string file;
   std::string name;
@@ -127,6 +151,7 @@ struct ExperimentSpec {
   OutputSpec output;
   nlohmann::json source;  // the file's JSON as read (for hashing and the summary)
   FramesOnlySpec frames_only;
+  DensitySweepSpec density_sweep;
 
   static ExperimentSpec load(const std::string& file);
   static ExperimentSpec from_json(const nlohmann::json& j, const std::string& file);
@@ -135,6 +160,14 @@ struct ExperimentSpec {
   static void read_common(JsonReader& r, ExperimentSpec& s);  // metrics, metric_options, output
   static ExperimentSpec read_frames_only(JsonReader& r, ExperimentSpec& s, const std::string& file);
 };
+
+// The material of variant `v` of a density sweep at `value` of its parameter: the variant's merged
+// material with the sweep's fixed "glints" keys and "glints"."parameter" set ([value, value] for the
+// [u, v] keys).
+nlohmann::json density_sweep_material(const VariantSpec& v, const DensitySweepSpec::Method& m, double value);
+// "" where that material is valid, else what is wrong with it (a value outside the parameter's range).
+std::string density_sweep_problem(const ExperimentSpec& s, const VariantSpec& v, const DensitySweepSpec::Method& m,
+                                  double value);
 
 // A variant's name becomes a folder of the run directory and a CSV cell: "" when it may, else what is
 // wrong and what is allowed (1 to 100 of A-Z a-z 0-9 . _ + -, not starting with '.' or '-', and not one

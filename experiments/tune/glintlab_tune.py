@@ -304,6 +304,7 @@ class Worker:
         os.makedirs(tdir, exist_ok=True)
         e = copy.deepcopy(self.experiment)
         e["variants"] = [variant_of(self.d, trial.params, name)]
+        e.pop("density_sweep", None)  # a trial is one variant; the experiment's sweep names others
         out = e.setdefault("output", {})
         out.update({"png": False, "exr": False, "contact_sheet": False})
         exp_path = os.path.join(tdir, "experiment.json")

@@ -23,6 +23,27 @@ vec2 glint_clamp_derivative(vec2 d) {
   return clamp(vec2(isnan(d.x) ? 0.0 : d.x, isnan(d.y) ? 0.0 : d.y), vec2(-1e20), vec2(1e20));
 }
 
+// The semi-axes (sigma_max, sigma_min) of the pixel footprint's ellipse, the
+// image of the unit pixel disk under M = [dx dy] (the ellipse of Heckbert's
+// EWA, which Deliot & Belcour 2023 and Kemppinen et al. 2025 filter over):
+// the singular values of M, the square roots of the eigenvalues of
+// M M^T = [a b; b d], a = dx.x^2 + dy.x^2, b = dx.x dx.y + dy.x dy.y,
+// d = dx.y^2 + dy.y^2. M is divided by its largest entry first (no
+// overflow), and sigma_min is |det M| / sigma_max (no cancellation). (0, 0)
+// where the footprint is zero or below 1e-30.
+vec2 glint_ellipse_axes(vec2 dx, vec2 dy) {
+  dx = glint_clamp_derivative(dx);
+  dy = glint_clamp_derivative(dy);
+  float m = max(max(abs(dx.x), abs(dx.y)), max(abs(dy.x), abs(dy.y)));
+  if (!(m > 1e-30)) return vec2(0.0);
+  dx /= m;
+  dy /= m;
+  float a = dx.x * dx.x + dy.x * dy.x, b = dx.x * dx.y + dy.x * dy.y, d = dx.y * dx.y + dy.y * dy.y;
+  float h = 0.5 * (a - d);
+  float smax = sqrt(0.5 * (a + d) + sqrt(h * h + b * b));  // >= 1/sqrt(2): some entry is 1
+  return m * vec2(smax, abs(dx.x * dy.y - dx.y * dy.x) / smax);
+}
+
 struct GlintFootprint {
   float s_c;      // cell size of sec. 4.2 after the K_a clamp (uv)
   float level_f;  // log2(s_c / s_ref); -1 for a zero footprint

@@ -3,6 +3,7 @@
 // (reuse, corruption detected and rebuilt), and bad input.
 #include "experiments/sources/reference_cache.h"
 #include "experiments/runner/runner.h"
+#include "experiments/runner/density_sweep.h"
 #include "metrics/color/image_io.h"
 
 #include "tests/support/csv.h"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -230,4 +232,76 @@ TEST(Runner, EnvironmentMapMustBeARegularFile) {
     EXPECT_EQ(run_experiment(opt, log), 2) << hdri << " accepted";
     EXPECT_NE(log.str().find("not a regular file"), std::string::npos) << log.str();
   }
+}
+
+// The matched parameter of a density sweep: where ln(glint density ratio) crosses 0, linear between the
+// neighbours that bracket it (the first crossing by value); a point at exactly 1 is its own match; no
+// crossing extrapolates the end pair nearest to 1, at most two steps past the end; NaN points are left
+// out and fewer than two usable points give NaN.
+TEST(DensitySweep, MatchedValueInterpolatesLnRatioToZero) {
+  using glintlab::SweepPoint;
+  bool br = false;
+  // ratio 0.5 at 6 and 2 at 8: ln crosses 0 halfway
+  EXPECT_NEAR(glintlab::matched_value({{8, std::log(2.0)}, {6, std::log(0.5)}}, &br), 7.0, 1e-12);
+  EXPECT_TRUE(br);
+  // the first crossing by value, not by order given; NaN left out
+  EXPECT_NEAR(glintlab::matched_value({{5, -1.0}, {7, NAN}, {6, 1.0}, {9, -1.0}}, &br), 5.5, 1e-12);
+  EXPECT_TRUE(br);
+  EXPECT_EQ(glintlab::matched_value({{5, -1.0}, {6, 0.0}, {7, 1.0}}, &br), 6.0);
+  // decreasing ratios cross too
+  EXPECT_NEAR(glintlab::matched_value({{1, 0.4}, {2, -0.4}}, &br), 1.5, 1e-12);
+  // no crossing: extrapolated from the end nearer to 1, clamped at two steps
+  EXPECT_NEAR(glintlab::matched_value({{5, -0.6}, {6, -0.4}, {7, -0.2}}, &br), 8.0, 1e-12);
+  EXPECT_FALSE(br);
+  EXPECT_NEAR(glintlab::matched_value({{5, -0.9}, {6, -0.8}, {7, -0.7}}, &br), 9.0, 1e-12);
+  EXPECT_NEAR(glintlab::matched_value({{5, 0.2}, {6, 0.4}}, &br), 4.0, 1e-12);
+  EXPECT_TRUE(std::isnan(glintlab::matched_value({{5, 0.2}, {6, 0.2}}, &br)));
+  // the ratio turns back below 1 inside the sweep, or the end pair leads away: nothing to match
+  EXPECT_TRUE(std::isnan(glintlab::matched_value({{5, -0.5}, {6, -0.2}, {7, -0.4}}, &br)));
+  EXPECT_NEAR(glintlab::matched_value({{5, -0.2}, {6, -0.4}, {7, -0.5}, {8, -0.45}}, &br), 4.0, 1e-12);
+  EXPECT_TRUE(std::isnan(glintlab::matched_value({{5, -0.4}, {6, -0.2}, {7, -0.3}}, &br)));
+  EXPECT_TRUE(std::isnan(glintlab::matched_value({{5, 0.2}, {6, NAN}}, &br)));
+}
+
+// A density sweep renders the variant again at each value against the run's own truth: every row has
+// the truth's glint density of the main run (the truth does not follow the swept parameter), the row
+// at the variant's own value is the main run's variant to the last bit (the same material, the same
+// truth), and the matched round is written where it says.
+TEST(DensitySweep, RowsAreTheVariantAgainstTheRunsOwnTruth) {
+  const glintlab::test::TempDir dir_tmp("sweep");
+  const fs::path dir = dir_tmp.path();
+  nlohmann::json j = nlohmann::json::parse(kTiny);
+  j["variants"] = {{{"name", "z"}, {"material", {{"glint_model", "zirr"}, {"glints", {{"log_density", 6}}}}}}};
+  j["density_sweep"] = {{"z", {{"parameter", "log_density"}, {"values", {5, 6, 7}}}}};
+  j["output"] = {{"exr", false}, {"png", false}};
+  std::ofstream(dir / "sweep.json") << j.dump();
+  RunOptions opt;
+  opt.report = false;
+  opt.experiment = (dir / "sweep.json").string();
+  opt.out_dir = (dir / "out").string();
+  opt.cache_dir = (dir / "cache").string();
+  opt.validation = true;
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(opt, log), 0) << log.str();
+  const auto summary = nlohmann::json::parse(std::ifstream(dir / "out" / "summary.json"));
+  const auto& main = summary["variants"][0]["metrics"];
+  const auto& rows = summary["density_sweep"]["z"];
+  ASSERT_EQ(rows.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(rows[i]["parameter"], "log_density");
+    EXPECT_EQ(rows[i]["value"], 5.0 + double(i));
+    EXPECT_EQ(rows[i]["glint_density_ref"], main["glint_density_ref"]["mean"]) << i;
+  }
+  for (const char* m : {"deltaE2000", "flicker_excess", "temporal_error_mc", "glint_density_test"})
+    EXPECT_EQ(rows[1][m], main[m]["mean"]) << m;
+  EXPECT_NE(rows[0]["deltaE2000"], rows[2]["deltaE2000"]);  // the parameter does act
+  const auto& matched = summary["matched_density"]["z"];
+  EXPECT_EQ(matched["parameter"], "log_density");
+  if (matched["value"].is_number()) {
+    EXPECT_GE(matched["rounds"].get<int>(), 1);
+    EXPECT_TRUE(fs::exists(dir / "out" / "matched-density" / "round-1" / "summary.json"));
+  } else {
+    EXPECT_TRUE(matched["reason"].is_string()) << matched.dump();
+  }
+  EXPECT_TRUE(fs::exists(dir / "out" / "density-sweep" / "z" / "summary.json"));
 }

@@ -344,3 +344,50 @@ TEST(ExperimentSpec, MetricOptionsAreValidated) {
   EXPECT_FALSE(s.metric_options.flip_hdr);
   EXPECT_EQ(s.metric_options.itp_luminance_nits, 203.0);
 }
+
+// "density_sweep": each named variant again at every value of a "glints" parameter; every derived
+// material is validated before any work (a value outside the parameter's range, a parameter the
+// model does not have, a variant that does not exist, values out of order).
+TEST(ExperimentSpec, DensitySweepIsCheckedBeforeAnyWork) {
+  json j = minimal();
+  j["variants"] = json::parse(R"([{"name": "z", "material": {"glint_model": "zirr"}},
+                                  {"name": "k", "material": {"glint_model": "kemppinen"}}])");
+  j["density_sweep"] = json::parse(R"({"z": {"parameter": "log_density", "values": [5, 6.5, 8]},
+                                       "k": {"parameter": "filter_width", "values": [0.3, 0.7]}})");
+  const ExperimentSpec s = ExperimentSpec::from_json(j, kFile);
+  ASSERT_EQ(s.density_sweep.methods.size(), 2u);
+  EXPECT_EQ(s.density_sweep.methods[0].variant, "k");  // by name
+  EXPECT_EQ(s.density_sweep.methods[0].parameter, "filter_width");
+  EXPECT_EQ(s.density_sweep.methods[1].parameter, "log_density");
+  EXPECT_EQ(s.density_sweep.methods[1].values, (std::vector<double>{5, 6.5, 8}));
+  // the derived material keeps the variant's model and every other key, and sets only the parameter
+  const json m = glintlab::density_sweep_material(s.variants[0], s.density_sweep.methods[1], 6.5);
+  EXPECT_EQ(m["glint_model"], "zirr");
+  EXPECT_EQ(m["glints"]["log_density"], 6.5);
+  EXPECT_EQ(m.value("preset", ""), s.variants[0].material_json.value("preset", ""));
+  // a [u, v] key gets the value on both axes
+  glintlab::DensitySweepSpec::Method rr{"z", "relative_roughness", {0.05, 0.1}, json{{"size_variation", 0.5}}};
+  const json mr = glintlab::density_sweep_material(s.variants[0], rr, 0.05);
+  EXPECT_EQ(mr["glints"]["relative_roughness"], json::array({0.05, 0.05}));
+  EXPECT_EQ(mr["glints"]["size_variation"], 0.5);  // the sweep's fixed keys
+
+  auto bad = [&](const char* sweep, const std::vector<std::string>& needles) {
+    json b = j;
+    b["density_sweep"] = json::parse(sweep);
+    expect_rejected(b, needles);
+  };
+  bad(R"({"z": {"parameter": "log_density", "values": [5, 99]}})", {"density_sweep.z.values", "log_density"});
+  bad(R"({"nope": {"parameter": "log_density", "values": [5, 6]}})", {"density_sweep.nope", "no variant"});
+  bad(R"({"z": {"parameter": "log_density", "values": [6, 5]}})", {"density_sweep.z.values", "increasing"});
+  bad(R"({"z": {"parameter": "log_density", "values": [6]}})", {"density_sweep.z.values", "2 to 32"});
+  bad(R"({"z": {"parameter": "log_density", "values": [5, "6"]}})", {"density_sweep.z.values"});
+  bad(R"({})", {"density_sweep"});
+  bad(R"({"z": [5, 6]})", {"density_sweep", "parameter"});
+  bad(R"({"z": {"parameter": "no such key", "values": [5, 6]}})", {"density_sweep.z.parameter"});
+  bad(R"({"z": {"parameter": "filter_width", "values": [0.5, 1]}})", {"density_sweep.z.values", "filter_width"});
+  bad(R"({"z": {"parameter": "log_density", "values": [5, 6], "extra": 1}})", {"density_sweep.z", "extra"});
+  bad(R"({"z": {"parameter": "log_density", "values": [5, 6], "glints": {"log_density": 6}}})",
+      {"density_sweep.z.glints", "swept"});
+  bad(R"({"z": {"parameter": "log_density", "values": [5, 6], "glints": {"size_variation": 9}}})",
+      {"density_sweep.z.values", "size_variation"});
+}

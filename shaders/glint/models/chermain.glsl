@@ -41,6 +41,35 @@
 //    alpha_l / alpha_g = 0.0566 always.
 //  - light_cone: only through alpha_g (above).
 //
+// What a viewer counts, against the truth (`grains`, n microfacets of lobe
+// width relative_roughness alpha_g, 0.1 alpha_g by default): a cell of n
+// microfacets draws its P-SDF at level k = log4 n (jittered), and a level-k
+// marginal holds 2^k mirrored pairs of lobes, 2^(k+1) lobes; the P-SDF is
+// the product of two marginals, so a cell shows (2^(k+1))^2 = 4 n lobes of
+// weight 1 / (4 n) each (the reference code does the same: the generator's
+// two mirrored lobes per mean, P22_theta_alpha's product P_i P_j), not
+// n lobes of weight 1 / n. With the lobe width 0.057 alpha_g against the
+// truth's 0.1 alpha_g, the expected number of lobes covering a half vector
+// is 4 n 0.057^2 against n 0.1^2, 1.3 times the truth's, and a hit lobe's
+// peak is (1 / (4 n 0.057^2)) / (1 / (n 0.1^2)) = 0.77 of a truth lobe's:
+// the method shows more, dimmer glints than `grains` at the same
+// log_density (the density sweep of glint-methods measures the effect).
+//
+// Sources, step by step (Chermain et al. 2020; reference code
+// ASTex-ICube/real_time_glint, shader/glint.frag.glsl):
+//  - the footprint ellipse, its anisotropy clamp, the LOD and two levels:
+//    Alg. 1 (glint.frag.glsl: f_P) -> glint_D;
+//  - the cells under the ellipse with EWA weights, at most 100 a level:
+//    Alg. 2 (P22__P_, after pbrt's MIPMap::EWA) -> chermain_level;
+//  - per cell: the coherent hash (eq. 8), the relative-area discard, the
+//    microfacet count, the jittered distribution level, the rotation and the
+//    product of two dictionary marginals scaled to alpha (eq. 11): Alg. 3
+//    (P22_theta_alpha) -> chermain_cell_p22;
+//  - D = P22 / cos^4 theta_h: eq. 6 -> glint_D;
+//  - the dictionary: sec. 5.1 and the generator (below) -> glint_table_entry;
+//  - ggaa: Chermain et al. 2021 sec. 4 (the MIP level of the slope
+//    footprint, textureGrad) -> chermain_marginal, chermain_slope_derivatives.
+//
 // The dictionary (Chermain et al. 2020 sec. 5.1 and their generator,
 // defaults "-nlevels 16 -N 192 -distreso 64 -alpha_dict 0.5
 // -std_dev_lobe 0.02"): N = 192 multiscale marginals; marginal d at level k

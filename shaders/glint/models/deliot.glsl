@@ -17,12 +17,24 @@
 // glint_model truth=grains limit=beckmann checks=finite,limit,deterministic fails=unbiased
 // glint_parameter screen_space_scale default=1.5 range=1,8
 // glint_parameter density_randomization default=2 range=0,5
+// glint_parameter noise_size default=64 range=64,512
+// glint_parameter floor_levels default=false type=bool
 // screen_space_scale: the published _ScreenSpaceScale, "the minimal allowed
 // size of a glint in pixels" (1 aliases; 1.5 is the authors' recommendation):
-// grid cells are 2^floor(log2(sigma_min screen_space_scale / 2)) uv wide,
-// sigma_min the ellipse's minor semi-axis. density_randomization: the
-// published _DensityRandomization, the standard deviation of the natural log
-// of the density from vertex to vertex (the port's default, 2).
+// the size LOD is lod = log2(sigma_min screen_space_scale / 2), sigma_min the
+// ellipse's minor semi-axis (SampleGlints2023NDF, "MANUAL LOD COMPENSATION").
+// density_randomization: the published _DensityRandomization, the standard
+// deviation of the natural log of the density from vertex to vertex (the
+// port's default, 2). noise_size: the side of the noise texture in texels
+// (rounded to an integer): 64 as the published shader's texture and the
+// port, 512 the default of the authors' standalone generator
+// (Glints2023.cs). floor_levels: false (published) blends the grid levels
+// (int)lod and (int)lod + 1 of SampleGlints2023NDF, a truncation toward zero:
+// the LOD is negative in every real case, so the blended levels are
+// floor(lod) + 1 and floor(lod) + 2, cells 0.75-1.5 px wide at the default
+// scale; true blends floor(lod) and floor(lod) + 1 instead (cells half as
+// wide, a quarter of the microfacets per vertex: an earlier glintlab rule,
+// kept to measure what the level choice does).
 //
 // glintlab's common parameters:
 //  - log_density: the method's exp(_LogMicrofacetDensity) is microfacets per
@@ -42,6 +54,24 @@
 //    method's ad-hoc probability, not the solid-angle fraction
 //    alpha_l^2 P22(h) that explicit microfacets of width alpha_l would have;
 //    the expectation, R D / D_max / R D_max = D, does not depend on it.
+//
+// Sources, step by step (the published HLSL's functions; the port
+// Glints2023.hlsli has the same names):
+//  - the footprint ellipse: GetGradientEllipse -> deliot_footprint;
+//  - the size LOD, the power-of-two ratio, the rotation bins and the
+//    tetrahedron of the four blended grids: SampleGlints2023NDF ("MANUAL LOD
+//    / ANISOTROPY RATIO / ANISOTROPY ROTATION COMPENSATION"),
+//    GetAnisoCorrectingGridTetrahedron, GetBarycentricWeightsTetrahedron ->
+//    deliot_grids;
+//  - one grid: the skewed simplex cell, a random vector per vertex, the
+//    jittered log density, the count N and the binomial's properties:
+//    SampleGlintGridSimplex -> deliot_grid, deliot_binomial;
+//  - the noise read at |h.xy| / R + a random offset: CustomRand4Texture ->
+//    deliot_texel_count, deliot_noise (the generator: Glints2023.cs);
+//  - the gate and the floored Gaussian, bilinearly:
+//    GenerateAngularBinomialValueForSurfaceCell -> deliot_count,
+//    deliot_texel_count;
+//  - min(sum / R, 20) D_max: SampleGlints2023NDF -> glint_D.
 //
 // Where this differs from the published HLSL (none changes the expectation):
 //  - the noise texture is not stored (no glint_table): each texel is a hash
@@ -64,9 +94,11 @@
 //    to 2^16 and the size level to [-40, 40] (finite grids for any input).
 //
 // The conformance check "unbiased" fails by what the published method does
-// (fails=unbiased; glintlab glint-test deliot: 39.6 standard errors, bound
-// 5: the mean over uv is not D_g). Three causes, each measured by removing it
-// (llvmpipe):
+// (fails=unbiased; `glintlab glint-test deliot`: 23.8 standard errors at
+// the published levels, 39.6 with floor_levels, bound 5: the mean over uv is
+// not D_g; worst at alpha 0.05 / 0.0125, log_density 8, view 0, h at the
+// normal, a footprint of one microdetail: mean 297 against D_g 509). Three
+// causes, each measured by removing it (llvmpipe, with floor_levels):
 //  - the output clamp min(sum / R, 20): a footprint of one microdetail holds
 //    a vertex of N < 1 microfacets whose one hit is 1 / (N R) >> 20; worst
 //    -64 % (alpha 0.05 / 0.0125, log_density 8, view 60 deg, h at the
@@ -80,9 +112,12 @@
 //    below P1 differs from P1 by ~ sqrt(P1 / 4096) (with the exact binomial
 //    per texel and no clamp: 7.5 errors, -6 % at alpha 0.05 / 0.0125,
 //    log_density 1, view 85 deg; 4.95 with the default density
-//    randomisation, which spreads P1).
-// "limit" passes at 2.98 % (bound 3): the noise of vertices whose jittered
-// density is e^-6 of the mean (0.53 % with density_randomization 0).
+//    randomisation, which spreads P1); noise_size 512 reads 262144 gates
+//    (21.0 errors with the other defaults).
+// "limit" passes at 0.85 % (bound 3; 2.98 % with floor_levels): the noise of
+// vertices whose jittered density is e^-6 of the mean, four times as many
+// microfacets a vertex at the published levels (0.53 % with floor_levels
+// and density_randomization 0).
 #ifndef GLINTLAB_GLINT_MODELS_DELIOT_GLSL
 #define GLINTLAB_GLINT_MODELS_DELIOT_GLSL
 
@@ -94,7 +129,6 @@
 #include "common/wrapped_floor.glsl"
 #include "sand/glint_footprint.glsl"
 
-#define DELIOT_NOISE_SIZE 64u          // the published texture is 64 x 64 texels
 #define DELIOT_NOISE_SALT 0x510E527Fu  // decorrelates the texel hash from the grids'
 #define DELIOT_GRID_SALT 0x9B05688Cu
 #define DELIOT_MAX_OUTPUT 20.0         // the published clamp of sum / R ("grazing angle extremities")
@@ -106,14 +140,14 @@
 
 // ---------------------------------------------------------------- noise texture
 
-// Texel t of the noise texture (wrapped to 64 x 64): x a uniform in (0, 1)
+// Texel t of the noise texture (wrapped to size x size): x a uniform in (0, 1)
 // (the gate), y a standard normal (the Gaussian's draw). The published
 // generator hashes the texel index (Wang hash, then xorshift) into one
 // uniform and one normal (erfinv of a second uniform) per texel, independent
 // from texel to texel; here pcg3d of the index, 24-bit uniforms
 // (k + 0.5) 2^-24 and normal_quantile (the same erfinv approximation).
-vec2 deliot_noise(uvec2 t) {
-  uvec3 h = pcg3d(uvec3(t % DELIOT_NOISE_SIZE, DELIOT_NOISE_SALT));
+vec2 deliot_noise(uvec2 t, uint size) {
+  uvec3 h = pcg3d(uvec3(t % size, DELIOT_NOISE_SALT));
   vec2 u = (vec2(h.xy >> 8u) + 0.5) * (1.0 / 16777216.0);
   return vec2(u.x, normal_quantile(u.y));
 }
@@ -159,13 +193,14 @@ float deliot_count(DeliotBinomial b, float u, float g) {
 }
 
 // The counts of the four texels around |h.xy| / R, offset per vertex by
-// `offset` (in [0, 1)^2, times the texture size), bilinearly interpolated.
-float deliot_texel_count(DeliotBinomial b, vec2 slope_r, vec2 offset) {
-  vec2 s = slope_r + offset * float(DELIOT_NOISE_SIZE);  // >= 0 and < 1e4 + 64: uint() is defined
+// `offset` (in [0, 1)^2, times the texture size), bilinearly interpolated
+// (SampleGlintGridSimplex: the texture read at slope / R + random offset).
+float deliot_texel_count(DeliotBinomial b, vec2 slope_r, vec2 offset, uint size) {
+  vec2 s = slope_r + offset * float(size);  // >= 0 and < 1e4 + 512: uint() is defined
   vec2 f = fract(s);
-  uvec2 t = uvec2(floor(s)) % DELIOT_NOISE_SIZE;
-  vec2 n00 = deliot_noise(t), n10 = deliot_noise(t + uvec2(1u, 0u));
-  vec2 n01 = deliot_noise(t + uvec2(0u, 1u)), n11 = deliot_noise(t + uvec2(1u, 1u));
+  uvec2 t = uvec2(floor(s)) % size;
+  vec2 n00 = deliot_noise(t, size), n10 = deliot_noise(t + uvec2(1u, 0u), size);
+  vec2 n01 = deliot_noise(t + uvec2(0u, 1u), size), n11 = deliot_noise(t + uvec2(1u, 1u), size);
   float c0 = mix(deliot_count(b, n00.x, n00.y), deliot_count(b, n10.x, n10.y), f.x);
   float c1 = mix(deliot_count(b, n01.x, n01.y), deliot_count(b, n11.x, n11.y), f.x);
   return mix(c0, c1, f.y);
@@ -189,13 +224,12 @@ struct DeliotGrid {
 float deliot_bin_width(int e) { return (0.25 * PI) / exp2(float(max(e, 1))); }
 uint deliot_bin_count(int e) { return 4u << uint(max(e, 1)); }
 
-// The footprint: the ellipse that M = [dx dy] maps the unit pixel disk to.
-// Its semi-axes are the singular values of M, the square roots of the
-// eigenvalues of S = M M^T = [a b; b d] (a = dx.x^2 + dy.x^2, b =
-// dx.x dx.y + dy.x dy.y, d = dx.y^2 + dy.y^2); the major axis is the
-// eigenvector of the larger one. M is divided by its largest entry first
-// (no overflow), and the smaller eigenvalue is det(M)^2 / lambda_max (no
-// cancellation).
+// The footprint: the ellipse that M = [dx dy] maps the unit pixel disk to
+// (GetGradientEllipse), its semi-axes from glint_ellipse_axes; the major
+// axis is the eigenvector of the larger eigenvalue of M M^T = [a b; b d],
+// at the angle 0.5 atan2(2b, a - d) from the u axis (SampleGlints2023NDF
+// measures theta from the v axis). M is divided by its largest entry before
+// the products (no overflow).
 struct DeliotFootprint {
   float lod;    // log2(sigma_min screen_space_scale / 2), in [-40, 40]
   float ratio;  // sigma_max / sigma_min, in [1, 2^16]
@@ -204,24 +238,22 @@ struct DeliotFootprint {
 
 DeliotFootprint deliot_footprint(vec2 dx, vec2 dy, float screen_space_scale) {
   DeliotFootprint f;
-  dx = glint_clamp_derivative(dx);
-  dy = glint_clamp_derivative(dy);
-  float m = max(max(abs(dx.x), abs(dx.y)), max(abs(dy.x), abs(dy.y)));
   f.lod = -DELIOT_MAX_LEVEL;
   f.ratio = 1.0;
   f.psi = 0.0;
-  if (!(m > 1e-30)) return f;  // no footprint: the finest cells, unrotated
+  vec2 axes = glint_ellipse_axes(dx, dy);
+  if (!(axes.x > 0.0)) return f;  // no footprint: the finest cells, unrotated
+  float smin = max(axes.y, axes.x * exp2(-float(DELIOT_MAX_RATIO_EXP)));
+  f.ratio = clamp(axes.x / smin, 1.0, exp2(float(DELIOT_MAX_RATIO_EXP)));
+  f.lod = clamp(log2(smin * 0.5 * screen_space_scale), -DELIOT_MAX_LEVEL, DELIOT_MAX_LEVEL);
+  dx = glint_clamp_derivative(dx);
+  dy = glint_clamp_derivative(dy);
+  float m = max(max(abs(dx.x), abs(dx.y)), max(abs(dy.x), abs(dy.y)));
   dx /= m;
   dy /= m;
-  float a = dx.x * dx.x + dy.x * dy.x, b = dx.x * dx.y + dy.x * dy.y, d = dx.y * dx.y + dy.y * dy.y;
-  float h = 0.5 * (a - d);
-  float lmax = 0.5 * (a + d) + sqrt(h * h + b * b);  // >= 1/2: some entry is 1
-  float det = dx.x * dy.y - dx.y * dy.x;
-  float smax = sqrt(lmax);
-  float smin = max(abs(det) / smax, smax * exp2(-float(DELIOT_MAX_RATIO_EXP)));
-  f.ratio = clamp(smax / smin, 1.0, exp2(float(DELIOT_MAX_RATIO_EXP)));
-  f.lod = clamp(log2(m * smin * 0.5 * screen_space_scale), -DELIOT_MAX_LEVEL, DELIOT_MAX_LEVEL);
-  // eigenvector of lmax at angle 0.5 atan2(2b, a - d) from the u axis; a circle has none
+  float b = dx.x * dx.y + dy.x * dy.y;
+  float h = 0.5 * ((dx.x * dx.x + dy.x * dy.x) - (dx.y * dx.y + dy.y * dy.y));
+  // a circle has no major axis
   float from_u = (h == 0.0 && b == 0.0) ? 0.5 * PI : 0.5 * atan(2.0 * b, 2.0 * h);
   float psi = from_u - 0.5 * PI;
   psi -= PI * floor(psi / PI);
@@ -242,8 +274,11 @@ DeliotFootprint deliot_footprint(vec2 dx, vec2 dy, float screen_space_scale) {
 // the weight of (vertex i, level j) is the overlap of the i-th interval of
 // the cumulative lambdas with the j-th of (1 - z, z). Neighbouring prisms
 // order their shared vertices alike, so the weights are continuous in
-// (orientation, anisotropy, size) and sum to 1.
-void deliot_grids(DeliotFootprint f, out DeliotGrid g[4]) {
+// (orientation, anisotropy, size) and sum to 1. The two size levels are
+// those of SampleGlints2023NDF (trunc(lod) and the next; with floor_levels,
+// floor(lod) and the next): the published levels jump by one where lod
+// crosses an integer < 0 (at that integer only) or 0, as published.
+void deliot_grids(DeliotFootprint f, bool floor_levels, out DeliotGrid g[4]) {
   float e0f = min(floor(log2(f.ratio)), float(DELIOT_MAX_RATIO_EXP));
   int e0 = int(e0f), e1 = e0 + 1;
   float y = clamp(f.ratio / exp2(e0f) - 1.0, 0.0, 1.0);
@@ -271,8 +306,9 @@ void deliot_grids(DeliotFootprint f, out DeliotGrid g[4]) {
     ve[1] = e0; vk[1] = k0 + 1u; lam[1] = x - 0.5 * y;
     ve[2] = e1; vk[2] = 2u * k0 + 1u; lam[2] = y;
   }
-  float L0 = floor(f.lod);
-  float z = f.lod - L0;
+  // SampleGlints2023NDF: lod0 = (int)lod (toward zero), lodLerp = frac(lod) = lod - floor(lod)
+  float L0 = floor_levels ? floor(f.lod) : trunc(f.lod);
+  float z = f.lod - floor(f.lod);
   float F[3] = float[3](max(lam[0], 0.0), max(lam[0], 0.0) + max(lam[1], 0.0), 1.0);
   float G0 = 1.0 - z;
   int i = 0, j = 0;
@@ -298,7 +334,8 @@ void deliot_grids(DeliotFootprint f, out DeliotGrid g[4]) {
 // divided by 2^L across and 2^(L + e) along; the triangular lattice is the
 // integer lattice of the skewed coordinates (x - y / sqrt(3), 2 y / sqrt(3)).
 // A vertex's cell (one unit cell of the grid) is 4^L 2^e uv in area.
-float deliot_grid(DeliotGrid g, vec2 uv, vec2 slope_r, float p, float ln_density, float density_sd, inout float cells) {
+float deliot_grid(DeliotGrid g, vec2 uv, vec2 slope_r, float p, float ln_density, float density_sd, uint noise_size,
+                  inout float cells) {
   float phi = float(g.k) * deliot_bin_width(g.e);
   if (g.e == 0) phi = 0.0;
   float c = cos(phi), s = sin(phi);
@@ -329,7 +366,7 @@ float deliot_grid(DeliotGrid g, vec2 uv, vec2 slope_r, float p, float ln_density
     float ld = clamp(ln_density + density_sd * normal_quantile(u.x), -DELIOT_MAX_LN_DENSITY, DELIOT_MAX_LN_DENSITY);
     float N = exp(clamp(ln_area + ld, log(DELIOT_MIN_COUNT), DELIOT_MAX_LN_COUNT));
     DeliotBinomial b = deliot_binomial(N * g.weight, p);
-    acc += bw[t] * deliot_texel_count(b, slope_r, u.yz) / N;
+    acc += bw[t] * deliot_texel_count(b, slope_r, u.yz, noise_size) / N;
   }
   return acc;
 }
@@ -346,15 +383,16 @@ vec3 glint_D(GlintQuery q) {
   if (!(p > 0.0)) return vec3(0.0);
   DeliotFootprint f = deliot_footprint(q.duv_dx, q.duv_dy, max(q.screen_space_scale, 1.0));
   DeliotGrid g[4];
-  deliot_grids(f, g);
+  deliot_grids(f, q.floor_levels > 0.5, g);
   vec2 uv = glint_clamp_uv(q.uv);
   vec2 slope_r = abs(q.h.xy) / R;  // orthographic slope grid, as published
   float ln_density = log(max(q.density, 1e-30));
   float sd = clamp(q.density_randomization, 0.0, 5.0);
+  uint noise_size = uint(clamp(round(q.noise_size), 64.0, 512.0));
   float cells = 0.0;
   float sum = 0.0;
   for (int i = 0; i < 4; ++i)
-    if (g[i].weight > 0.0) sum += deliot_grid(g[i], uv, slope_r, p, ln_density, sd, cells);
+    if (g[i].weight > 0.0) sum += deliot_grid(g[i], uv, slope_r, p, ln_density, sd, noise_size, cells);
   glint_cells_visited = cells;
   return vec3(min(sum / R, DELIOT_MAX_OUTPUT) * D_max);
 }

@@ -20,9 +20,37 @@
 // difference of distributions besides the glints' positions.
 // glint_model truth=grains limit=ggx checks=finite,unbiased,limit,deterministic
 // glint_parameter filter_width default=0.7 range=0.1,4
+// glint_parameter lod_offset default=true type=bool
 // filter_width: the standard deviation of the Gaussian pixel filter in pixels
-// (the paper's filter size, default 0.7); it sets the spatial covariance and
-// the LOD.
+// (the shadertoy's pixel_filter_size, default 0.7); it sets the spatial
+// covariance and the LOD. lod_offset: true adds the shadertoy's 2^filter_width
+// levels to the LOD (QueryLod: log2(max(s0, s1) filter) + pow(2, filter),
+// +1.62 levels at 0.7), so that the evaluated 2 x 2 spatial cells hold most
+// of the pixel filter (its standard deviation along the major axis is
+// 2^-(2^filter) = 0.32 cells at the LOD; over the two blended LODs and the
+// vertex offsets the block holds 0.77 of it); false leaves it out (an
+// earlier glintlab rule: the block then holds 0.21 of the filter and the
+// compensation turns the rest into a smooth term, fewer and weaker glints;
+// tests/core/material/glint_kemppinen.cpp).
+// The Beckmann variant is glint/models/kemppinen_beckmann.glsl (this file
+// with KEMPPINEN_BECKMANN defined).
+//
+// Sources, step by step (the authors' shadertoy tcdGDl, functions named):
+//  - the disk: ndf_to_disk_ggx (Lambert projection of the stretched h, the
+//    factor d named jacobian_determinant there) -> kemppinen_disk;
+//  - the LOD and its two levels: QueryLod, floor(lambda) + m, weights
+//    1 - |lambda - l| -> kemppinen_lod, kemppinen_D;
+//  - the cells of one level: 2 x 2 angular around round(x_a res_a) (clamped
+//    to [1, res_a - 1]) times 2 x 2 spatial around round(x_s res_s), a facet
+//    jittered uniformly in each, N(sigma_a) N(sigma_s) / N per facet,
+//    sigma_a = d a^2 I, sigma_s = filter^2 J J^T (J the footprint ellipse's
+//    axes, uv_ellipsoid) -> kemppinen_level, kemppinen_cells;
+//  - the roulette: smoothstep(max(0, r - 0.1), min(1, r + 0.1), w) per facet
+//    -> kemppinen_roulette;
+//  - the compensation: the angular Gaussian's mass on the square minus that
+//    on the evaluated angular cells (compensation) -> kemppinen_compensation,
+//    here extended to the spatial cells (below);
+//  - the output D_filter d / pi -> kemppinen_D.
 //
 // glintlab's common parameters:
 //  - log_density: N = 10^log_density facets per unit uv area (the paper's
@@ -40,7 +68,30 @@
 //    0.04 / alpha_g). Away from the normal the lobe follows the paper's
 //    sqrt(d) scaling, not a Beckmann lobe's shape (approximate).
 //  - light_cone: enters through alpha_g and alpha_l, both widened by
-//    sand/glint_roughness.glsl (a Beckmann convolution, approximate for GGX).
+//    sand/glint_roughness.glsl (a Beckmann convolution, approximate for GGX,
+//    exact for the Beckmann variant).
+//
+// The Beckmann variant (KEMPPINEN_BECKMANN; the paper states that the method
+// converges to GGX or Beckmann, and no public code of the Beckmann map was
+// found, so this one is glintlab's): the square coordinate of each axis is
+// x = (1 + erf(s)) / 2 of the stretched slope s = h.xy / (h.z alpha). The
+// Beckmann projected-area measure D(h) h.z dw = P22 d(slope) is the product
+// of two normal laws of variance 1/2 in s, which this map carries to the
+// uniform measure on the square exactly, so a uniform density 1 of facets
+// has the Beckmann NDF as its mean and the output is D_filter D_Beckmann(h)
+// (d / pi = D_Beckmann in the GGX variant's terms). A facet is a Beckmann
+// lobe of alpha_l in slope (standard deviation alpha_l / sqrt(2) per axis),
+// i.e. rel / sqrt(2) in s and (rel / sqrt(2)) exp(-s^2) / sqrt(pi) on the
+// square (dx / ds).
+//
+// Where this differs from the shadertoy (each keeps the mean at the smooth
+// NDF; none is an option):
+//  - the compensation covers the spatial cells outside the evaluated block
+//    too, and is weighted by the roulette's exact mean instead of w (below);
+//  - the LOD is clamped to [0, 16] (the shadertoy's clamp of the angular
+//    index has min > max at l <= 0) and the angular block is kept inside the
+//    square for the cells and the compensation alike;
+//  - the alpha_g stretch is anisotropic (alpha_u, alpha_v).
 #ifndef GLINTLAB_GLINT_MODELS_KEMPPINEN_GLSL
 #define GLINTLAB_GLINT_MODELS_KEMPPINEN_GLSL
 
@@ -77,7 +128,7 @@
 // way: tests/core/material/glint_kemppinen.cpp.)
 struct KemppinenDisk {
   vec2 x;       // position in the unit square
-  float ggx;    // d / pi = ggx_D(h, alpha)
+  float ndf;    // d / pi = ggx_D(h, alpha) (the Beckmann variant: beckmann_D)
   vec2 sigma;   // the angular Gaussian's standard deviation per axis (square units)
 };
 
@@ -86,12 +137,22 @@ struct KemppinenDisk {
 // sqrt(d) rel alpha / 4 = rel / (4 t) for each axis, since d alpha_u alpha_v = 1 / t^2.
 KemppinenDisk kemppinen_disk(vec3 h, vec2 alpha, vec2 rel) {
   KemppinenDisk k;
+#ifdef KEMPPINEN_BECKMANN
+  // the Beckmann variant (see the top of the file): x = (1 + erf(s)) / 2 per
+  // axis, from erfc of the non-negative argument so the tails keep digits
+  vec2 st = clamp(h.xy / (alpha * max(h.z, 1e-30)), vec2(-1e4), vec2(1e4));
+  vec2 tail = 0.5 * vec2(erfc_nonneg(abs(st.x)), erfc_nonneg(abs(st.y)));
+  k.x = vec2(st.x >= 0.0 ? 1.0 - tail.x : tail.x, st.y >= 0.0 ? 1.0 - tail.y : tail.y);
+  k.ndf = beckmann_D(h, vec2(0.0), alpha);
+  k.sigma = max(rel * (0.70710678 * 0.56418958) * exp(-st * st), vec2(GLINT_KEMPPINEN_MIN_SIGMA_A));  // 1/sqrt(2), 1/sqrt(pi)
+#else
   vec3 s = vec3(h.xy / alpha, h.z);
   float t = dot(s, s);  // in [h.z^2, 1 + 1e6] for alpha >= 1e-3
   vec3 m = s * inversesqrt(t);
   k.x = 0.5 + 0.5 * m.xy * inversesqrt(1.0 + max(m.z, 0.0));
-  k.ggx = ggx_D(h, alpha);
+  k.ndf = ggx_D(h, alpha);
   k.sigma = max(rel / (4.0 * t), vec2(GLINT_KEMPPINEN_MIN_SIGMA_A));
+#endif
   return k;
 }
 
@@ -328,15 +389,16 @@ float kemppinen_cells(KemppinenLevel v, float w, inout float visited) {
 
 // ---------------------------------------------------------------- the NDF
 
-// The LOD: lambda = log2(max(|dx|, |dy|) sqrt(N) filter), the footprint's
-// longer axis in facet spacings, clamped to [0, GLINT_KEMPPINEN_MAX_LOD];
-// the pair floor(lambda), floor(lambda) + 1 with the linear weights
-// 1 - |lambda - l|.
-float kemppinen_lod(vec2 dx, vec2 dy, float res, float filter_width) {
-  float s = max(max(abs(dx.x), abs(dx.y)), max(abs(dy.x), abs(dy.y)));
-  if (!(s > 0.0)) return 0.0;
-  float j = s * max(length(dx / s), length(dy / s));
-  return clamp(log2(j) + log2(res * filter_width), 0.0, float(GLINT_KEMPPINEN_MAX_LOD));
+// The LOD (QueryLod): lambda = log2(sigma_max sqrt(N) filter) + 2^filter,
+// sigma_max the footprint ellipse's major semi-axis (the shadertoy's
+// max(|s0|, |s1|) of the uv_ellipsoid axes), in facet spacings; without
+// lod_offset, no 2^filter. Clamped to [0, GLINT_KEMPPINEN_MAX_LOD]; the pair
+// floor(lambda), floor(lambda) + 1 with the linear weights 1 - |lambda - l|.
+float kemppinen_lod(vec2 dx, vec2 dy, float res, float filter_width, bool lod_offset) {
+  float j = glint_ellipse_axes(dx, dy).x;
+  if (!(j > 0.0)) return 0.0;
+  float offset = lod_offset ? exp2(filter_width) : 0.0;
+  return clamp(log2(j) + log2(res * filter_width) + offset, 0.0, float(GLINT_KEMPPINEN_MAX_LOD));
 }
 
 struct KemppinenResult {
@@ -344,19 +406,20 @@ struct KemppinenResult {
   float visited;  // cells kept by the roulette, both LODs
 };
 
-KemppinenResult kemppinen_D(vec2 uv, vec2 dx, vec2 dy, vec3 h, vec2 alpha, vec2 rel, float density, float filter_width) {
+KemppinenResult kemppinen_D(vec2 uv, vec2 dx, vec2 dy, vec3 h, vec2 alpha, vec2 rel, float density, float filter_width,
+                            bool lod_offset) {
   KemppinenResult r;
   r.D = 0.0;
   r.visited = 0.0;
   if (!(h.z > 0.0)) return r;
   alpha = max(alpha, vec2(1e-4));
   KemppinenDisk k = kemppinen_disk(h, alpha, clamp(rel, vec2(0.0), vec2(1.0)));
-  if (!(k.ggx > 0.0)) return r;
+  if (!(k.ndf > 0.0)) return r;
   uv = glint_clamp_uv(uv);
   dx = glint_clamp_derivative(dx);
   dy = glint_clamp_derivative(dy);
   float res = sqrt(max(density, 1e-30));
-  float lambda = kemppinen_lod(dx, dy, res, filter_width);
+  float lambda = kemppinen_lod(dx, dy, res, filter_width, lod_offset);
   float l0 = floor(lambda);
   float w1 = l0 < float(GLINT_KEMPPINEN_MAX_LOD) ? lambda - l0 : 0.0;
   float density_on_disk = 0.0;  // the filtered facet density at (uv, x): mean M_A(square) ~ 1
@@ -367,13 +430,13 @@ KemppinenResult kemppinen_D(vec2 uv, vec2 dx, vec2 dy, vec3 h, vec2 alpha, vec2 
     density_on_disk += kemppinen_cells(v, w, r.visited);
     density_on_disk += kemppinen_roulette_mean(w) * kemppinen_compensation(v).value;
   }
-  r.D = density_on_disk * k.ggx;
+  r.D = density_on_disk * k.ndf;
   return r;
 }
 
 vec3 glint_D(GlintQuery q) {
   KemppinenResult r = kemppinen_D(q.uv, q.duv_dx, q.duv_dy, q.h, q.alpha_g, q.alpha_l / max(q.alpha_g, vec2(1e-30)),
-                                  q.density, q.filter_width);
+                                  q.density, q.filter_width, q.lod_offset > 0.5);
   glint_cells_visited = r.visited;
   return vec3(r.D);
 }

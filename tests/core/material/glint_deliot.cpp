@@ -84,8 +84,6 @@ double correlation(const std::vector<double>& x, const std::vector<double>& y) {
   return c / std::sqrt(mx.var * my.var);
 }
 
-const int kSize = 64;  // the published texture is 64 x 64 texels
-
 // The published generator (Deliot & Belcour's noise initialisation, as the
 // authors' Unity code and its ports run it), texel (x, y) of a size x size
 // texture: rng = WangHash(flat(123 (x, y)) + size^2 seed), then the uniform
@@ -105,16 +103,17 @@ uint32_t xorshift32(uint32_t& s) {
   s ^= s << 5u;
   return s;
 }
-void published_texel(int x, int y, double& u, double& g) {
-  uint32_t flat = uint32_t(123 * y) * uint32_t(kSize) + uint32_t(123 * x);
-  uint32_t s = wang_hash(flat + uint32_t(kSize * kSize) * 0x69420u);
+void published_texel(int size, int x, int y, double& u, double& g) {
+  uint32_t flat = uint32_t(123 * y) * uint32_t(size) + uint32_t(123 * x);
+  uint32_t s = wang_hash(flat + uint32_t(size * size) * 0x69420u);
   u = double(xorshift32(s)) / 4294967296.0;
   g = gr::normal_quantile(double(xorshift32(s)) / 4294967296.0);
 }
 
 }  // namespace
 
-// The texture's 4096 (uniform, normal) pairs against U(0, 1) and N(0, 1):
+// The texture's (uniform, normal) pairs against U(0, 1) and N(0, 1), at the
+// published shader's 64 x 64 and the published generator's 512 x 512:
 // mean and variance within 4 standard errors of the analytic values (the
 // standard error of a sample variance is sqrt((mu4 - sigma^4) / n)), KS below
 // its 1e-3 critical value 1.95 / sqrt(n), and the correlations that the
@@ -122,62 +121,66 @@ void published_texel(int x, int y, double& u, double& g) {
 // their +x and +y neighbours, wrapped, and u with g of the same texel) below
 // 4 / sqrt(n). The published generator's texture passes the same bounds, and
 // the two are one distribution by the two-sample KS test (critical value at
-// 1e-3: 1.95 sqrt(2 / n)). The texture wraps: texel (x + 64, y + 128) is (x, y).
+// 1e-3: 1.95 sqrt(2 / n)). The texture wraps: texel (x + size, y + 2 size) is (x, y).
 TEST(GlintDeliot, NoiseTextureHasThePublishedStatistics) {
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
-  const size_t n = size_t(kSize) * kSize;
-  std::vector<float> in(2 * 2 * n);
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
-      size_t i = size_t(y) * kSize + x;
-      in[2 * i] = float(x);
-      in[2 * i + 1] = float(y);
-      in[2 * (n + i)] = float(x + 64);
-      in[2 * (n + i) + 1] = float(y + 128);
-    }
-  auto out = run_chunked(ctx, "tests/glint_deliot.comp", {"DELIOT_TEST_NOISE"}, in, 2, 2, 2 * n);
-  std::vector<double> u(n), g(n), pu(n), pg(n);
-  for (size_t i = 0; i < n; ++i) {
-    u[i] = out[2 * i];
-    g[i] = out[2 * i + 1];
-    ASSERT_EQ(out[2 * i], out[2 * (n + i)]) << "texel " << i << " does not wrap";
-    ASSERT_EQ(out[2 * i + 1], out[2 * (n + i) + 1]) << "texel " << i << " does not wrap";
-    ASSERT_TRUE(u[i] > 0.0 && u[i] < 1.0 && std::isfinite(g[i]));
-    published_texel(int(i % kSize), int(i / kSize), pu[i], pg[i]);
-  }
-  const double N = double(n), se_mean_u = std::sqrt(1.0 / 12.0 / N), se_var_u = std::sqrt((1.0 / 80 - 1.0 / 144) / N);
-  const double se_mean_g = std::sqrt(1.0 / N), se_var_g = std::sqrt(2.0 / N);
-  const double ks_crit = 1.95 / std::sqrt(N), rho_bound = 4.0 / std::sqrt(N);
-  auto shifted = [&](const std::vector<double>& v, int dx, int dy) {
-    std::vector<double> s(n);
+  for (const int kSize : {64, 512}) {
+    SCOPED_TRACE("noise_size " + std::to_string(kSize));
+    const size_t n = size_t(kSize) * kSize;
+    std::vector<float> in(2 * 2 * n);
     for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x) s[size_t(y) * kSize + x] = v[size_t((y + dy) % kSize) * kSize + (x + dx) % kSize];
-    return s;
-  };
-  auto check = [&](const char* name, const std::vector<double>& uu, const std::vector<double>& gg) {
-    Moments mu = moments(uu), mg = moments(gg);
-    double ks_u = ks_statistic(uu, [](double x) { return std::clamp(x, 0.0, 1.0); });
-    double ks_g = ks_statistic(gg, normal_cdf);
-    double rho[5] = {correlation(uu, shifted(uu, 1, 0)), correlation(uu, shifted(uu, 0, 1)),
-                     correlation(gg, shifted(gg, 1, 0)), correlation(gg, shifted(gg, 0, 1)), correlation(uu, gg)};
-    if (verbose())
-      std::printf("  %s: u mean %.4f var %.5f KS %.4f | g mean %.4f var %.4f KS %.4f | rho %.4f %.4f %.4f %.4f %.4f\n",
-                  name, mu.mean, mu.var, ks_u, mg.mean, mg.var, ks_g, rho[0], rho[1], rho[2], rho[3], rho[4]);
-    EXPECT_LT(std::fabs(mu.mean - 0.5), 4 * se_mean_u) << name;
-    EXPECT_LT(std::fabs(mu.var - 1.0 / 12.0), 4 * se_var_u) << name;
-    EXPECT_LT(ks_u, ks_crit) << name;
-    EXPECT_LT(std::fabs(mg.mean), 4 * se_mean_g) << name;
-    EXPECT_LT(std::fabs(mg.var - 1.0), 4 * se_var_g) << name;
-    EXPECT_LT(ks_g, ks_crit) << name;
-    for (double r : rho) EXPECT_LT(std::fabs(r), rho_bound) << name;
-  };
-  check("glintlab", u, g);
-  check("published", pu, pg);
-  double ks2_u = ks_two_sample(u, pu), ks2_g = ks_two_sample(g, pg);
-  if (verbose()) std::printf("  two-sample KS: u %.4f g %.4f (critical %.4f)\n", ks2_u, ks2_g, 1.95 * std::sqrt(2.0 / N));
-  EXPECT_LT(ks2_u, 1.95 * std::sqrt(2.0 / N));
-  EXPECT_LT(ks2_g, 1.95 * std::sqrt(2.0 / N));
+      for (int x = 0; x < kSize; ++x) {
+        size_t i = size_t(y) * kSize + x;
+        in[2 * i] = float(x);
+        in[2 * i + 1] = float(y);
+        in[2 * (n + i)] = float(x + kSize);
+        in[2 * (n + i) + 1] = float(y + 2 * kSize);
+      }
+    auto out =
+        run_chunked(ctx, "tests/glint_deliot.comp", {"DELIOT_TEST_NOISE=" + std::to_string(kSize) + "u"}, in, 2, 2, 2 * n);
+    std::vector<double> u(n), g(n), pu(n), pg(n);
+    for (size_t i = 0; i < n; ++i) {
+      u[i] = out[2 * i];
+      g[i] = out[2 * i + 1];
+      ASSERT_EQ(out[2 * i], out[2 * (n + i)]) << "texel " << i << " does not wrap";
+      ASSERT_EQ(out[2 * i + 1], out[2 * (n + i) + 1]) << "texel " << i << " does not wrap";
+      ASSERT_TRUE(u[i] > 0.0 && u[i] < 1.0 && std::isfinite(g[i]));
+      published_texel(kSize, int(i % kSize), int(i / kSize), pu[i], pg[i]);
+    }
+    const double N = double(n), se_mean_u = std::sqrt(1.0 / 12.0 / N), se_var_u = std::sqrt((1.0 / 80 - 1.0 / 144) / N);
+    const double se_mean_g = std::sqrt(1.0 / N), se_var_g = std::sqrt(2.0 / N);
+    const double ks_crit = 1.95 / std::sqrt(N), rho_bound = 4.0 / std::sqrt(N);
+    auto shifted = [&](const std::vector<double>& v, int dx, int dy) {
+      std::vector<double> s(n);
+      for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) s[size_t(y) * kSize + x] = v[size_t((y + dy) % kSize) * kSize + (x + dx) % kSize];
+      return s;
+    };
+    auto check = [&](const char* name, const std::vector<double>& uu, const std::vector<double>& gg) {
+      Moments mu = moments(uu), mg = moments(gg);
+      double ks_u = ks_statistic(uu, [](double x) { return std::clamp(x, 0.0, 1.0); });
+      double ks_g = ks_statistic(gg, normal_cdf);
+      double rho[5] = {correlation(uu, shifted(uu, 1, 0)), correlation(uu, shifted(uu, 0, 1)),
+                       correlation(gg, shifted(gg, 1, 0)), correlation(gg, shifted(gg, 0, 1)), correlation(uu, gg)};
+      if (verbose())
+        std::printf("  %s: u mean %.4f var %.5f KS %.4f | g mean %.4f var %.4f KS %.4f | rho %.4f %.4f %.4f %.4f %.4f\n",
+                    name, mu.mean, mu.var, ks_u, mg.mean, mg.var, ks_g, rho[0], rho[1], rho[2], rho[3], rho[4]);
+      EXPECT_LT(std::fabs(mu.mean - 0.5), 4 * se_mean_u) << name;
+      EXPECT_LT(std::fabs(mu.var - 1.0 / 12.0), 4 * se_var_u) << name;
+      EXPECT_LT(ks_u, ks_crit) << name;
+      EXPECT_LT(std::fabs(mg.mean), 4 * se_mean_g) << name;
+      EXPECT_LT(std::fabs(mg.var - 1.0), 4 * se_var_g) << name;
+      EXPECT_LT(ks_g, ks_crit) << name;
+      for (double r : rho) EXPECT_LT(std::fabs(r), rho_bound) << name;
+    };
+    check("glintlab", u, g);
+    check("published", pu, pg);
+    double ks2_u = ks_two_sample(u, pu), ks2_g = ks_two_sample(g, pg);
+    if (verbose()) std::printf("  two-sample KS: u %.4f g %.4f (critical %.4f)\n", ks2_u, ks2_g, 1.95 * std::sqrt(2.0 / N));
+    EXPECT_LT(ks2_u, 1.95 * std::sqrt(2.0 / N));
+    EXPECT_LT(ks2_g, 1.95 * std::sqrt(2.0 / N));
+  }
 }
 
 // The distributed binomial law X = gate(u) (1 + K(g)), u ~ U(0, 1), g ~ N(0, 1),

@@ -31,12 +31,14 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr size_t kIn = 16, kOut = 16;  // shaders/tests/glint_kemppinen.comp
 
-std::vector<float> run(int mode, const std::vector<float>& in) {
+// `beckmann`: the kemppinen_beckmann variant's map (KEMPPINEN_BECKMANN).
+std::vector<float> run(int mode, const std::vector<float>& in, bool beckmann = false) {
   auto& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
   const size_t n = in.size() / kIn;
-  return core::run_compute(ctx, "tests/glint_kemppinen.comp", {"MODE=" + std::to_string(mode)}, in, n * kOut,
-                           uint32_t(n));
+  std::vector<std::string> defines{"MODE=" + std::to_string(mode)};
+  if (beckmann) defines.push_back("KEMPPINEN_BECKMANN");
+  return core::run_compute(ctx, "tests/glint_kemppinen.comp", defines, in, n * kOut, uint32_t(n));
 }
 
 // 8-point Gauss-Legendre on [-1, 1] (nodes by Newton's method on P_8).
@@ -235,6 +237,72 @@ TEST(GlintKemppinen, CompensationIsTheBruteForceSumOfTheUnevaluatedCells) {
               cs.size(), worst, largest);
 }
 
+// The LOD of the authors' shadertoy (QueryLod): lambda = log2(sigma_max sqrt(N) filter) + 2^filter,
+// sigma_max the footprint ellipse's major semi-axis (fp64 SVD of [dx dy] here), and without lod_offset
+// the same less 2^filter. At that LOD the spatial Gaussian's standard deviation along the major axis
+// is 2^-(2^filter) cells (0.32 at the default 0.7; twice that at the finer LOD of the pair), so the
+// evaluated 2 x 2 spatial block holds most of the pixel filter: its mass, averaged over the vertex
+// offset and weighted over the two LODs as the model blends them, is above 0.7 with the offset (0.77
+// measured) and below 0.3 without (0.21: the rest is what the compensation turns into a smooth term).
+TEST(GlintKemppinen, LodIsTheShadertoysAndKeepsThePixelFilterInTheBlock) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  std::vector<float> in;
+  std::vector<std::array<double, 6>> cases;  // dx, dy, res, filter
+  for (int k = 0; k < 64; ++k) {
+    const double w = std::exp2(-12 + 6 * U(rng)), res = std::exp2(8 + 4 * U(rng)), f = k % 2 ? 0.7 : 0.3 + U(rng);
+    const double a = 2 * kPi * U(rng), e = 0.2 + 0.8 * U(rng), sh = U(rng) - 0.5;
+    const std::array<double, 6> c{w * std::cos(a), w * std::sin(a), w * e * (-std::sin(a) + sh * std::cos(a)),
+                                  w * e * (std::cos(a) + sh * std::sin(a)), res, f};
+    for (int off = 0; off < 2; ++off) {
+      std::vector<float> rec(kIn, 0.0f);
+      for (int i = 0; i < 6; ++i) rec[size_t(i)] = float(c[size_t(i)]);
+      rec[6] = float(off);
+      in.insert(in.end(), rec.begin(), rec.end());
+    }
+    cases.push_back(c);
+  }
+  auto out = run(3, in);
+  double worst = 0;
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const auto& c = cases[k];
+    const double A = c[0] * c[0] + c[2] * c[2], B = c[0] * c[1] + c[2] * c[3], D = c[1] * c[1] + c[3] * c[3];
+    const double smax = std::sqrt(0.5 * (A + D) + std::sqrt(0.25 * (A - D) * (A - D) + B * B));
+    const double lambda = std::log2(smax * c[4] * c[5]);
+    const double with = std::clamp(lambda + std::exp2(c[5]), 0.0, 16.0), without = std::clamp(lambda, 0.0, 16.0);
+    EXPECT_NEAR(out[2 * k * kOut], without, 2e-5) << k;
+    EXPECT_NEAR(out[(2 * k + 1) * kOut], with, 2e-5) << k;
+    worst = std::max(worst, std::fabs(out[(2 * k + 1) * kOut] - with));
+  }
+  // the block's mass at the default filter over the two blended LODs, with and without the offset
+  auto block_mass = [&](bool offset) {
+    std::vector<float> cin;
+    std::vector<double> weight;
+    const double f = 0.7, res = 1024, w = 1.0 / 4096;  // an isotropic footprint, 4 facets wide at f
+    const double lambda = std::log2(w * res * f) + (offset ? std::exp2(f) : 0.0);
+    for (int j = 0; j < 64; ++j)
+      for (int m = 0; m < 2; ++m) {
+        std::vector<float> rec(kIn, 0.0f);
+        rec[0] = float(std::floor(lambda) + m);
+        rec[1] = float((j + 0.5) / 64 / res * 37), rec[2] = float((j * 7 % 64 + 0.5) / 64 / res * 11);
+        rec[3] = float(w), rec[6] = float(w), rec[7] = float(res), rec[8] = float(f);
+        rec[9] = rec[10] = 0.5f, rec[11] = rec[12] = 0.01f;
+        cin.insert(cin.end(), rec.begin(), rec.end());
+        const double frac = lambda - std::floor(lambda);
+        weight.push_back(m == 0 ? 1 - frac : frac);
+      }
+    auto o = run(1, cin);
+    double sum = 0;
+    for (size_t i = 0; i < weight.size(); ++i) sum += weight[i] * o[i * kOut + 3];
+    return sum / 64;
+  };
+  const double with = block_mass(true), without = block_mass(false);
+  std::printf("LOD: largest |GPU - fp64| %.2g levels; spatial block mass %.3f with the offset, %.3f without\n",
+              worst, with, without);
+  EXPECT_GT(with, 0.7);
+  EXPECT_LT(without, 0.3);
+}
+
 // A sheared footprint (correlated spatial covariance): the GPU integrates the
 // block mass of the correlated Gaussian by quadrature over one axis, the brute
 // force sums its cells' 2D quadratures.
@@ -324,6 +392,17 @@ struct HemisphereGrid {
   }
 };
 
+// The map (MODE 0) of every node of g, relative roughness 0.1.
+std::vector<float> map_grid(const HemisphereGrid& g, const std::array<double, 2>& alpha, bool beckmann) {
+  std::vector<float> in(g.h.size() * kIn, 0.0f);
+  for (size_t i = 0; i < g.h.size(); ++i) {
+    float* r = &in[i * kIn];
+    r[0] = float(g.h[i][0]), r[1] = float(g.h[i][1]), r[2] = float(g.h[i][2]);
+    r[3] = float(alpha[0]), r[4] = float(alpha[1]), r[5] = 0.1f, r[6] = 0.1f;
+  }
+  return run(0, in, beckmann);
+}
+
 double ggx_fp64(const std::array<double, 3>& h, double ax, double ay) {
   const double t = h[0] * h[0] / (ax * ax) + h[1] * h[1] / (ay * ay) + h[2] * h[2];
   return 1 / (kPi * ax * ay * t * t);
@@ -339,13 +418,7 @@ double ggx_fp64(const std::array<double, 3>& h, double ax, double ay) {
 TEST(GlintKemppinen, LambertDiskOfTheStretchedHalfVectorCarriesGgx) {
   for (auto alpha : {std::array<double, 2>{0.3, 0.3}, std::array<double, 2>{0.5, 0.125}}) {
     HemisphereGrid g(512, 1024, std::sqrt(alpha[0] * alpha[1]));
-    std::vector<float> in(g.h.size() * kIn, 0.0f);
-    for (size_t i = 0; i < g.h.size(); ++i) {
-      float* r = &in[i * kIn];
-      r[0] = float(g.h[i][0]), r[1] = float(g.h[i][1]), r[2] = float(g.h[i][2]);
-      r[3] = float(alpha[0]), r[4] = float(alpha[1]), r[5] = 0.1f, r[6] = 0.1f;
-    }
-    auto out = run(0, in);
+    auto out = map_grid(g, alpha, false);
     std::array<double, 32> bins{};
     double mass_fp64 = 0, mass_gpu = 0, worst_rel = 0;
     for (size_t i = 0; i < g.h.size(); ++i) {
@@ -374,42 +447,88 @@ TEST(GlintKemppinen, LambertDiskOfTheStretchedHalfVectorCarriesGgx) {
   }
 }
 
+double beckmann_fp64(const std::array<double, 3>& h, double ax, double ay) {
+  const double c2 = h[2] * h[2], sx = h[0] / (ax * h[2]), sy = h[1] / (ay * h[2]);
+  return std::exp(-(sx * sx + sy * sy)) / (kPi * ax * ay * c2 * c2);
+}
+
+// The Beckmann variant: its projected-area measure D(h) h.z dw, carried to
+// the square by x = (1 + erf(h.xy / (h.z alpha))) / 2 per axis, is uniform:
+// 4 x 8 equal bins of the square hold 1/32 of the mass each. A wrong stretch
+// (alpha swapped or squared), a missing 1/sqrt(2) or a map of the slope
+// instead of the stretched slope moves mass between them; the factor is
+// Beckmann (d / pi = D_Beckmann) and integrates to 1.
+TEST(GlintKemppinen, ErfSquareOfTheStretchedSlopeCarriesBeckmann) {
+  for (auto alpha : {std::array<double, 2>{0.3, 0.3}, std::array<double, 2>{0.5, 0.125}}) {
+    HemisphereGrid g(512, 1024, std::sqrt(alpha[0] * alpha[1]));
+    auto out = map_grid(g, alpha, true);
+    std::array<double, 32> bins{};
+    double mass_fp64 = 0, mass_gpu = 0, worst_rel = 0;
+    const double peak = 1 / (kPi * alpha[0] * alpha[1]);
+    for (size_t i = 0; i < g.h.size(); ++i) {
+      const float* o = &out[i * kOut];
+      const double D = beckmann_fp64(g.h[i], alpha[0], alpha[1]);
+      const double m = D * g.h[i][2] * g.weight[i];
+      mass_fp64 += m;
+      mass_gpu += o[2] * g.h[i][2] * g.weight[i];
+      if (D > 1e-4 * peak) worst_rel = std::max(worst_rel, std::fabs(o[2] - D) / D);
+      ASSERT_TRUE(o[0] >= 0 && o[0] <= 1 && o[1] >= 0 && o[1] <= 1) << i;  // on the square
+      bins[size_t(std::min(3, int(4 * o[0])) * 8 + std::min(7, int(8 * o[1])))] += m;
+    }
+    SCOPED_TRACE("alpha " + std::to_string(alpha[0]) + " " + std::to_string(alpha[1]));
+    EXPECT_NEAR(mass_fp64, 1.0, 1e-4);
+    EXPECT_NEAR(mass_gpu, 1.0, 1e-4);
+    EXPECT_LT(worst_rel, 2e-5);
+    double worst_bin = 0;
+    for (double b : bins) worst_bin = std::max(worst_bin, std::fabs(b - 1.0 / 32));
+    EXPECT_LT(worst_bin, 1.5e-3);
+    std::printf("square (Beckmann), alpha %.3g/%.3g: mass %.6f (GPU factor %.6f, largest relative error %.2g), "
+                "largest bin error %.2g of 1/32\n", alpha[0], alpha[1], mass_fp64, mass_gpu, worst_rel, worst_bin);
+  }
+}
+
 // The angular Gaussian's width: near the normal, a facet at the disk's centre
 // is a Beckmann lobe of alpha_l = relative roughness x alpha_g in slope
 // (a = alpha_l / 4 in the paper's units). Its NDF N_A(x(h) - c) d(h) / pi,
 // relative to its peak, against exp(-s^2 / alpha_l^2) at slopes s up to
 // 1.5 alpha_l.
+// The Beckmann variant's facet has the standard deviation rel / sqrt(2) in
+// the stretched slope, rel / sqrt(2 pi) on the square at the normal.
 TEST(GlintKemppinen, AngularGaussianIsTheMicrodetailLobeNearTheNormal) {
-  const double alpha = 0.3, rel = 0.05, al = alpha * rel;
-  std::vector<double> slopes;
-  for (int k = 0; k <= 12; ++k) slopes.push_back(1.5 * al * k / 12);
-  std::vector<float> in;
-  for (double s : slopes)
-    for (int axis = 0; axis < 2; ++axis) {
-      std::vector<float> rec(kIn, 0.0f);
-      const double n = std::sqrt(1 + s * s);
-      rec[0] = float(axis == 0 ? s / n : 0), rec[1] = float(axis == 1 ? s / n : 0), rec[2] = float(1 / n);
-      rec[3] = rec[4] = float(alpha), rec[5] = rec[6] = float(rel);
-      in.insert(in.end(), rec.begin(), rec.end());
-    }
-  auto out = run(0, in);
-  const double sigma0 = out[3];
-  EXPECT_NEAR(sigma0, rel / 4, 1e-7);
-  auto lobe = [&](size_t i) {
-    const float* o = &out[i * kOut];
-    const double dx = o[0] - 0.5, dy = o[1] - 0.5;
-    return std::exp(-0.5 * (dx * dx + dy * dy) / (sigma0 * sigma0)) * o[2];
-  };
-  const double peak = lobe(0);
-  double worst = 0;
-  for (size_t k = 0; k < slopes.size(); ++k)
-    for (size_t axis = 0; axis < 2; ++axis) {
-      const double model = lobe(2 * k + axis) / peak;
-      // Beckmann D_l(h) / D_l(n) = exp(-s^2 / alpha_l^2) / cos^4 = exp(-s^2 / alpha_l^2) (1 + s^2)^2
-      const double s2 = slopes[k] * slopes[k];
-      const double beckmann = std::exp(-s2 / (al * al)) * (1 + s2) * (1 + s2);
-      worst = std::max(worst, std::fabs(model - beckmann));
-      EXPECT_NEAR(model, beckmann, 4e-3) << "slope " << slopes[k];
-    }
-  std::printf("angular lobe vs Beckmann alpha_l %.3g: largest difference %.2g (of a peak of 1)\n", al, worst);
+  for (const bool beckmann : {false, true}) {
+    SCOPED_TRACE(beckmann ? "kemppinen_beckmann" : "kemppinen");
+    const double alpha = 0.3, rel = 0.05, al = alpha * rel;
+    std::vector<double> slopes;
+    for (int k = 0; k <= 12; ++k) slopes.push_back(1.5 * al * k / 12);
+    std::vector<float> in;
+    for (double s : slopes)
+      for (int axis = 0; axis < 2; ++axis) {
+        std::vector<float> rec(kIn, 0.0f);
+        const double n = std::sqrt(1 + s * s);
+        rec[0] = float(axis == 0 ? s / n : 0), rec[1] = float(axis == 1 ? s / n : 0), rec[2] = float(1 / n);
+        rec[3] = rec[4] = float(alpha), rec[5] = rec[6] = float(rel);
+        in.insert(in.end(), rec.begin(), rec.end());
+      }
+    auto out = run(0, in, beckmann);
+    const double sigma0 = out[3];
+    EXPECT_NEAR(sigma0, beckmann ? rel / std::sqrt(2 * kPi) : rel / 4, 1e-7);
+    auto lobe = [&](size_t i) {
+      const float* o = &out[i * kOut];
+      const double dx = o[0] - 0.5, dy = o[1] - 0.5;
+      return std::exp(-0.5 * (dx * dx + dy * dy) / (sigma0 * sigma0)) * o[2];
+    };
+    const double peak = lobe(0);
+    double worst = 0;
+    for (size_t k = 0; k < slopes.size(); ++k)
+      for (size_t axis = 0; axis < 2; ++axis) {
+        const double model = lobe(2 * k + axis) / peak;
+        // Beckmann D_l(h) / D_l(n) = exp(-s^2 / alpha_l^2) / cos^4 = exp(-s^2 / alpha_l^2) (1 + s^2)^2
+        const double s2 = slopes[k] * slopes[k];
+        const double beckmann = std::exp(-s2 / (al * al)) * (1 + s2) * (1 + s2);
+        worst = std::max(worst, std::fabs(model - beckmann));
+        EXPECT_NEAR(model, beckmann, 4e-3) << "slope " << slopes[k];
+      }
+    std::printf("angular lobe (%s) vs Beckmann alpha_l %.3g: largest difference %.2g (of a peak of 1)\n",
+                beckmann ? "kemppinen_beckmann" : "kemppinen", al, worst);
+  }
 }
