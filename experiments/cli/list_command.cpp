@@ -8,11 +8,37 @@
 #include "experiments/cli/exit_codes.h"
 #include "experiments/sources/motion_convention.h"
 #include "experiments/spec/experiment_spec.h"
+#include "core/util/json_check.h"
 #include "metrics/metric_registry.h"
 
 #include <iostream>
 
 namespace glintlab {
+
+namespace {
+
+// "  —  " and the first sentence of a built-in experiment's "description" (at most 110 characters), or
+// "" where it has none (or cannot be read: `list` lists what is there).
+std::string experiment_summary_line(const std::string& name) {
+  try {
+    const nlohmann::json j = read_json_file(resolve_experiment_path(name));
+    std::string d = j.is_object() && j.contains("description") && j["description"].is_string()
+                        ? j["description"].get<std::string>()
+                        : "";
+    for (size_t i = d.find(". "); i != std::string::npos; i = d.find(". ", i + 1))  // a sentence ends before
+      if (i + 2 < d.size() && d[i + 2] >= 'A' && d[i + 2] <= 'Z') {                // a capital ("Fig. 6" goes on)
+        d.resize(i);
+        break;
+      }
+    if (!d.empty() && d.back() == '.') d.pop_back();
+    if (d.size() > 110) d = d.substr(0, 107) + "...";
+    return d.empty() ? "" : "  -  " + d;
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+
+}  // namespace
 
 void add_list_command(CLI::App& app, int& exit_code) {
   CLI::App* list = app.add_subcommand("list", "list built-in experiments, camera paths, presets, metrics, devices");
@@ -23,7 +49,9 @@ void add_list_command(CLI::App& app, int& exit_code) {
             std::cout << title << ":\n";
             for (const auto& x : xs) std::cout << "  " << x << "\n";
           };
-          print("experiments", builtin_experiment_names());
+          std::cout << "experiments:\n";
+          for (const auto& name : builtin_experiment_names())
+            std::cout << "  " << name << experiment_summary_line(name) << "\n";
           print("camera paths", core::CameraPath::builtin_names());
           print("scenes (mesh types)", {"plane", "wavy", "sphere", "dunes"});
           print("material presets", core::SandParams::preset_names());

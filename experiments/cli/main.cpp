@@ -6,6 +6,8 @@
 #include "experiments/cli/exit_codes.h"
 #include "experiments/runner/version.h"
 
+#include <iostream>
+
 int main(int argc, char** argv) {
   glintlab::tune_allocator_for_rendering();
   CLI::App app{"glintlab: temporal anti-aliasing and glint stability experiments (headless Vulkan)"};
@@ -19,6 +21,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = glintlab::kExitOk;
   glintlab::add_commands_for(app, exit_code, argc, argv);
+  if (argc < 2) {  // no command: what the commands are, not only that one is required
+    std::cout << app.help();
+    return glintlab::kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -30,6 +30,17 @@ std::string owner_of(const nlohmann::json& header) {
   return c != header.end() && *c == "measure" ? "measure" : "run";
 }
 
+// A journal that exists must be a regular file: opening a FIFO blocks until a writer comes (forever),
+// and a folder or a device is no journal. ConfigError naming it.
+void refuse_non_regular(const fs::path& journal) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(journal, ec);
+  if (ec || !fs::exists(st) || fs::is_regular_file(st)) return;
+  const char* what = fs::is_directory(st) ? "a folder" : fs::is_fifo(st) ? "a FIFO" : "not a regular file";
+  throw ConfigError(journal.string() + ": the run's journal is " + what +
+                    "; glintlab reads and writes it as a regular file: remove it, or give another --out");
+}
+
 // A new journal must not replace another command's: its frames.csv, summary.json and images would
 // be replaced in part and the rest left beside the new ones. ConfigError when `journal` (the first
 // line) is a header of another command than `header`'s; nothing when there is no readable header.
@@ -107,6 +118,7 @@ Journal::Journal(const fs::path& dir, const nlohmann::json& header, bool resume)
     if (attempt == 100) throw IoError(lock.string() + ": replaced while it was being locked, 100 times");
   }
   try {  // a constructor that throws runs no destructor: the lock is released here
+    refuse_non_regular(path_);
     if (resume && fs::exists(path_)) {
       read(path_);
       if (header_ != header)
@@ -158,6 +170,7 @@ Journal Journal::load(const fs::path& dir) {
   j.path_ = dir / kJournal;
   if (!fs::exists(j.path_))
     throw ConfigError(j.path_.string() + ": no journal here (is " + dir.string() + " the --out of a glintlab run?)");
+  refuse_non_regular(j.path_);
   j.read(j.path_);
   return j;
 }

@@ -224,11 +224,13 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
       v.taa = parse_taa(tr);
     }
     v.debug = vr.get_enum("debug", "final", core::SandParams::debug_output_names());
-    auto merged = [&](const char* key) {  // the experiment's material with the variant's overrides of `key`
+    // The experiment's material with the variant's overrides of `key`, key by key at every depth (a JSON
+    // merge patch, RFC 7386: an object merges into the object it overrides, anything else replaces it).
+    auto merged = [&](const char* key) {
       nlohmann::json m = s.material_json;
       const nlohmann::json& over = vr.raw(key);
       if (!over.is_object()) vr.fail(key, "expected an object of material overrides");
-      for (auto it = over.begin(); it != over.end(); ++it) m[it.key()] = it.value();
+      m.merge_patch(over);
       return m;
     };
     v.material_json = vr.has("material") ? merged("material") : s.material_json;

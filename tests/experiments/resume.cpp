@@ -16,6 +16,7 @@
 #include <map>
 #include <sstream>
 #include <thread>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -224,4 +225,36 @@ TEST(ReferenceCache, ConcurrentWritersNeverCorruptAnEntry) {
   EXPECT_EQ(bad.load(), 0);
   EXPECT_EQ(corrupt.load(), 0);
   EXPECT_TRUE(cache.load(key).has_value());
+}
+
+// A journal that is not a regular file is refused at once (exit 2, naming it), before anything
+// renders: a FIFO would block every reader forever, a folder is no journal. `run`, `run --resume` and
+// `merge` alike; nothing is written into the folder.
+TEST(Resume, AJournalThatIsNotARegularFileIsRefused) {
+  const glintlab::test::TempDir tmp("journal-kind");
+  const fs::path exp = tmp.path() / "exp.json";
+  std::ofstream(exp) << kExperiment;
+  for (const char* kind : {"FIFO", "folder"}) {
+    const fs::path out = tmp.path() / (std::string("out-") + kind);
+    fs::create_directories(out);
+    const fs::path journal = out / "records.jsonl";
+    if (std::string(kind) == "FIFO")
+      ASSERT_EQ(::mkfifo(journal.c_str(), 0644), 0);
+    else
+      fs::create_directories(journal);
+    for (const bool resume : {false, true}) {
+      RunOptions o = options(out, exp, tmp.path() / "cache");
+      o.resume = resume;
+      std::ostringstream log;
+      EXPECT_EQ(run_experiment(o, log), 2) << kind << " " << log.str();
+      EXPECT_NE(log.str().find(journal.string()), std::string::npos) << log.str();
+      EXPECT_NE(log.str().find(std::string("a ") + kind), std::string::npos) << log.str();
+    }
+    std::ostringstream log;
+    EXPECT_EQ(merge_runs({out.string()}, (tmp.path() / "merged").string(), false, log), 2) << log.str();
+    EXPECT_NE(log.str().find(std::string("a ") + kind), std::string::npos) << log.str();
+    size_t entries = 0;
+    for (const auto& e : fs::directory_iterator(out)) entries += e.path().filename() != "records.jsonl";
+    EXPECT_EQ(entries, 0u) << kind;  // nothing written beside it
+  }
 }

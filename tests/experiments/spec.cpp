@@ -120,6 +120,17 @@ TEST(ExperimentSpec, VariantOverridesMergeOverExperimentMaterial) {
   EXPECT_EQ(s.variants[1].material.noise_scale, 500);  // the experiment's override survives
   EXPECT_EQ(s.variants[1].material.R_s, hdri.R_s);     // the preset's value survives
   EXPECT_EQ(s.variants[2].samples_per_pixel(), 9);
+  // nested objects merge key by key: a variant that sets one key of "glints" keeps the experiment's others
+  j["material"]["glints"] = {{"log_density", 9}, {"alpha_g", {0.5, 0.5}}};
+  j["material"]["glint_model"] = "zirr";
+  j["variants"] = json::parse(R"([{"name": "z", "material": {"glints": {"size_variation": 0.5}}},
+                                  {"name": "w", "material": {"glints": {"alpha_g": [0.2, 0.3]}}}])");
+  s = ExperimentSpec::from_json(j, kFile);
+  EXPECT_EQ(s.variants[0].material.glints.log_density, 9);
+  EXPECT_EQ(s.variants[0].material.glints.alpha_g[0], 0.5);
+  EXPECT_EQ(s.variants[0].material_json["glints"]["size_variation"], 0.5);
+  EXPECT_EQ(s.variants[1].material.glints.log_density, 9);
+  EXPECT_EQ(s.variants[1].material.glints.alpha_g[1], 0.3);  // an array is replaced whole
 }
 
 TEST(ExperimentSpec, RejectsUnknownTopLevelKey) {
