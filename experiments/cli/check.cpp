@@ -62,6 +62,44 @@ std::optional<double> mean_of(const nlohmann::json& variant, const std::string& 
   return mean.is_null() ? std::numeric_limits<double>::quiet_NaN() : mean.get<double>();
 }
 
+// A baseline's floors widen what the gate allows, so they are validated as means are: "references" an
+// array of objects with unique names; each "floor" an object of metrics that have a noise floor, each a
+// finite number >= 0 in the metric's range and no larger than the largest mean of that metric among the
+// variants measured against that truth (the truth's own noise is part of every such error). Throws
+// std::invalid_argument naming `file`, the reference and the metric.
+void validate_floors(const nlohmann::json& j, const std::string& file) {
+  const auto refs = j.find("references");
+  if (refs == j.end()) return;
+  if (!refs->is_array()) bad(file, "\"references\" must be an array of the truths");
+  std::set<std::string> names;
+  for (const auto& r : *refs) {
+    if (!r.is_object() || !r.contains("name") || !r["name"].is_string())
+      bad(file, "every entry of \"references\" must be an object with a string \"name\"");
+    const std::string name = r["name"];
+    if (!names.insert(name).second)
+      bad(file, "reference \"" + name + "\" is given twice; reference names must be unique (a floor is a truth's)");
+    if (!r.contains("floor")) continue;
+    if (!r["floor"].is_object()) bad(file, "reference \"" + name + "\": \"floor\" must be an object of metric -> number");
+    for (const auto& [metric, f] : r["floor"].items()) {
+      const std::string where = "reference \"" + name + "\", floor of \"" + metric + "\": ";
+      if (!metrics::has_noise_floor(metric)) bad(file, where + metric + " has no noise floor (no floor is allowed)");
+      const auto range = metrics::value_range(metric);
+      if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0 ||
+          (range && !range->contains(f.get<double>())))
+        bad(file, where + dump_json(f) + "; allowed: " + (range ? range->allowed : std::string("a number")) +
+                      ", at least 0");
+      double largest = -1;  // the largest mean of the metric among the variants measured against this truth
+      for (const auto& v : j["variants"])
+        if (v.value("reference", nlohmann::json()) == name && v["metrics"].contains(metric) &&
+            v["metrics"][metric]["mean"].is_number())
+          largest = std::max(largest, v["metrics"][metric]["mean"].get<double>());
+      if (largest >= 0 && f.get<double>() > largest)
+        bad(file, where + dump_json(f) + " is larger than every mean of " + metric + " measured against it (the " +
+                      "largest is " + dump_json(largest) + "): a truth's noise cannot exceed the errors it is part of");
+    }
+  }
+}
+
 // Throws std::invalid_argument naming `file` unless `j` is a glintlab summary whose every variant has a
 // unique name and whose every metric mean is null or a number in its declared range. In a baseline, a
 // metric that `tolerances` gates must have a finite mean where it is present: null cannot gate.
@@ -102,6 +140,7 @@ void validate_summary(const nlohmann::json& j, const std::string& file, bool bas
         bad(file, where + "\"mean\" is " + dump_json(mean) + "; allowed: " + allowed + (gated ? "" : " or null"));
     }
   }
+  if (baseline) validate_floors(j, file);
 }
 
 }  // namespace

@@ -265,3 +265,38 @@ TEST(Check, TheAllowedWorseningIsAtLeastTheTruthsNoiseFloor) {
   worse["variants"][0]["metrics"]["deltaE2000"]["mean"] = 0.54;
   EXPECT_EQ(regressions(check_summary(worse, no_floor, default_check_tolerances())), 1u);
 }
+
+// A baseline's floors widen what the gate allows, so a floor that could not be the truth's is bad input
+// (naming the reference and the metric), not a gate that lets a x2-x5 regression pass: a floor above
+// every error measured against that truth, a floor on a metric that has none, one outside the metric's
+// range, two truths of one name, a floor that is not a number >= 0.
+TEST(Check, FloorsInTheBaselineAreValidatedAsMeansAre) {
+  json base = summary();
+  base["variants"][0]["reference"] = "reference";
+  base["variants"][1]["reference"] = "reference";
+  base["references"] = {{{"name", "reference"}, {"floor", {{"deltaE2000", 0.05}}}}};
+  json worse = base;
+  worse["variants"][0]["metrics"]["deltaE2000"]["mean"] = 2.5;  // x5
+  ASSERT_EQ(regressions(check_summary(worse, base, default_check_tolerances())), 1u);  // the valid floor
+  auto refused = [&](const json& floor, const std::vector<std::string>& needles, json refs = nullptr) {
+    json b = base;
+    b["references"] = refs.is_null() ? json{{{"name", "reference"}, {"floor", floor}}} : refs;
+    try {
+      check_summary(worse, b, default_check_tolerances());
+      ADD_FAILURE() << "accepted " << b["references"].dump();
+    } catch (const std::invalid_argument& e) {
+      for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what();
+    }
+  };
+  refused({{"deltaE2000", 1e300}}, {"reference \"reference\"", "deltaE2000", "larger than every mean"});
+  refused({{"deltaE2000", 0.6}}, {"deltaE2000", "largest is 0.5"});
+  refused({{"flicker_contrast", 0.1}}, {"flicker_contrast", "no noise floor"});
+  refused({{"flip", 5}}, {"flip", "[0, 1]"});
+  refused({{"deltaE2000", "0.1"}}, {"deltaE2000", "\"0.1\""});
+  refused({{"deltaE2000", nullptr}}, {"deltaE2000", "null"});
+  refused({{"deltaE2000", json::array({0.1})}}, {"deltaE2000"});
+  refused({{"deltaE2000", -0.1}}, {"deltaE2000", "at least 0"});
+  refused(nullptr, {"given twice"},
+          json{{{"name", "reference"}, {"floor", {{"deltaE2000", 0.05}}}},
+               {{"name", "reference"}, {"floor", {{"deltaE2000", 1e300}}}}});
+}
