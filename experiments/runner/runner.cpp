@@ -24,6 +24,7 @@
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
+#include "metrics/metric_registry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -157,7 +158,13 @@ int size_reference(const RunOptions& opt, const ExperimentSpec& spec, std::ostre
           if (v.value("reference", "") == r.at("name").get<std::string>() && v["metrics"].contains(metric) &&
               v["metrics"][metric]["mean"].is_number())
             smallest = std::min(smallest, v["metrics"][metric]["mean"].get<double>());
-        const double f = floor.is_number() ? floor.get<double>() : std::numeric_limits<double>::infinity();
+        if (!floor.is_number()) {  // growing the truth cannot give a floor the run does not measure
+          log << "error: " << spec.file << ": reference.floor." << metric << ": the run at " << g << "x" << g
+              << " measured no floor of " << metric << " for " << r.at("name").get<std::string>()
+              << " (every frame's is undefined); the truth cannot be sized by it\n";
+          return kExitBadInput;
+        }
+        const double f = floor.get<double>();
         step["floor"][metric] = floor;
         step["smallest"][metric] = std::isfinite(smallest) ? nlohmann::json(smallest) : nlohmann::json(nullptr);
         const double ratio = smallest > 0 && std::isfinite(smallest) ? f / (fraction * smallest)
@@ -287,6 +294,13 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
     log << "note: " << spec.file << ": reference.enabled is false; metrics are skipped\n";
   nlohmann::json summary_extra = extra;
   if (measured && !spec.reference.floor_target.empty() && opt.reference_grid == 0) {
+    for (const auto& [metric, fraction] : spec.reference.floor_target) {
+      const metrics::MetricInfo* info = metrics::metric_info(metric);
+      if (spec.frames < 2 && info && std::string(info->group) == "flicker")
+        throw ConfigError(file + ": reference.floor." + metric + ": " + metric + " compares consecutive frames and this "
+                          "run has 1 frame: it has no floor to size the truth by (run 2 frames or more, or name a "
+                          "per-frame metric)");
+    }
     if (opt.shard_count > 1) {
       log << "error: " << file << ": reference.floor sizes the truth by whole runs; run it unsharded once, then "
           << "shard with the \"grid\" it chose (summary.json reference_sizing.grid)\n";

@@ -252,7 +252,8 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
       s.reference.grid = ref->get_int("grid", 16, 1, 64);
       if (auto fl = ref->optional_child("floor")) {
         for (auto it = fl->json().begin(); it != fl->json().end(); ++it) {
-          if (!metrics::has_noise_floor(it.key()) || !metrics::value_range(it.key()))
+          const bool prefix = !it.key().empty() && it.key().back() == '_';  // "pooled_rms_": a block size is missing
+          if (prefix || !metrics::has_noise_floor(it.key()) || !metrics::value_range(it.key()))
           {
             std::string allowed;  // every metric whose row says it has a floor
             for (const metrics::MetricInfo& m : metrics::metric_table())
@@ -280,6 +281,12 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
   read_common(r, s);
   if (r.has("density_sweep")) read_density_sweep(r, s);
   r.finish();
+  if (s.output.halves && (!s.reference.enabled || !s.reference.frames.empty() || s.reference.grid < 2))
+    throw ConfigError(file + ": output.halves: the truth's halves are the two checkerboard halves of a rendered "
+                      "truth's samples; this experiment's truth " +
+                      (!s.reference.enabled        ? std::string("is off (reference.enabled false)")
+                       : !s.reference.frames.empty() ? std::string("is read from files")
+                                                     : "has 1 sample (reference.grid 1; at least 2 have halves)"));
   for (const auto& [m, fraction] : s.reference.floor_target) {  // a floor of a metric the run measures
     const auto per_pixel = metrics::metric_names();
     const bool measured =
@@ -386,6 +393,9 @@ ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s
   s.frames = 0;  // what the sequences hold
   read_common(r, s);
   r.finish();
+  if (s.output.halves)
+    throw ConfigError(file + ": output.halves: an experiment without \"scene\" renders no truth to write halves of "
+                      "(give the truth's halves as reference.frames and frames_b)");
   return s;
 }
 

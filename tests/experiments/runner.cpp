@@ -305,3 +305,24 @@ TEST(DensitySweep, RowsAreTheVariantAgainstTheRunsOwnTruth) {
   }
   EXPECT_TRUE(fs::exists(dir / "out" / "density-sweep" / "z" / "summary.json"));
 }
+
+// A floor target of a temporal metric in a one-frame run has nothing to measure: exit 2 before any
+// rendering, not a truth grown to max_grid on an infinite floor.
+TEST(Runner, AFloorTargetTheRunCannotMeasureIsBadInput) {
+  const glintlab::test::TempDir dir_tmp("floor1");
+  const fs::path dir = dir_tmp.path();
+  nlohmann::json j = nlohmann::json::parse(kTiny);
+  j["reference"] = {{"grid", 2}, {"floor", {{"temporal_error_mc", 0.5}}}, {"max_grid", 4}};
+  std::ofstream(dir / "f.json") << j.dump();
+  RunOptions opt;
+  opt.report = false;
+  opt.experiment = (dir / "f.json").string();
+  opt.out_dir = (dir / "out").string();
+  opt.cache_dir = (dir / "cache").string();
+  opt.max_frames = 1;
+  std::ostringstream log;
+  EXPECT_EQ(run_experiment(opt, log), 2) << log.str();
+  EXPECT_NE(log.str().find("reference.floor.temporal_error_mc"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("1 frame"), std::string::npos) << log.str();
+  EXPECT_FALSE(fs::exists(dir / "out" / "sizing")) << "no sizing run";
+}

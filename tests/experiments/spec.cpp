@@ -402,3 +402,24 @@ TEST(ExperimentSpec, DensitySweepIsCheckedBeforeAnyWork) {
   bad(R"({"z": {"parameter": "log_density", "values": [5, 6], "glints": {"size_variation": 9}}})",
       {"density_sweep.z.values", "size_variation"});
 }
+
+// Options that would do nothing are refused before any work, saying why: a floor target named by a
+// pooled prefix without its block size, the truth's halves of a truth that has none (one sample, read
+// from files, switched off, or an experiment of files only).
+TEST(ExperimentSpec, OptionsThatWouldDoNothingAreRefused) {
+  json j = minimal();
+  j["reference"] = {{"grid", 4}, {"floor", {{"pooled_rms_", 0.1}}}};
+  expect_rejected(j, {"reference.floor", "pooled_rms_", "not a metric with a noise floor", "pooled_rms_<block>"});
+  j["reference"] = {{"grid", 4}, {"floor", {{"pooled_rms_8", 0.1}}}};
+  EXPECT_NO_THROW(ExperimentSpec::from_json(j, kFile));
+  j["reference"] = {{"grid", 1}};
+  j["output"] = {{"halves", true}};
+  expect_rejected(j, {"output.halves", "reference.grid 1"});
+  j["reference"] = {{"grid", 2}};
+  EXPECT_NO_THROW(ExperimentSpec::from_json(j, kFile));
+  j["reference"] = {{"enabled", false}};
+  expect_rejected(j, {"output.halves", "reference.enabled false"});
+  json f = json::parse(R"({"variants": [{"name": "t", "frames": "t/"}], "reference": {"frames": "r/"},
+                           "output": {"halves": true}})");
+  expect_rejected(f, {"output.halves", "without \"scene\""});
+}
