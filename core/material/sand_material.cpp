@@ -301,6 +301,20 @@ SandParams SandParams::from_json(JsonReader& r) {
         if (!g->has(gp.name)) continue;
         G.model[gp.name] = gp.is_bool ? (g->get_bool(gp.name) ? 1.0 : 0.0) : g->get_number(gp.name, gp.lo, gp.hi);
       }
+    // a key another glint model declares: say which, rather than only that it is unknown here
+    const GlintModelDecl* own = p.glint_decl();
+    for (auto it = g->json().begin(); it != g->json().end(); ++it) {
+      if (own && own->parameter(it.key())) continue;
+      std::string owners;
+      for (const auto& m : builtin_glint_models())
+        if (m.parameter(it.key())) owners += (owners.empty() ? "" : ", ") + m.name;
+      if (!owners.empty())
+        g->fail(it.key(), "unknown key for this material's glint model " + p.glint_model +
+                              (own && !own->parameters.empty() ? " (its parameters: " + parameter_list(*own) + ")"
+                                                               : std::string(" (it has no parameters of its own)")) +
+                              "; it is a parameter of the glint model " + owners +
+                              ": set \"glint_model\" beside it, or set it where that model is chosen");
+    }
     g->finish();
   }
   r.finish();

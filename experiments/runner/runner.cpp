@@ -63,9 +63,14 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
         << std::setw(19) << metric("temporal_error_mc") << std::setw(16) << metric("flicker_excess") << std::setw(14)
         << metric("temporal_lag") << "\n";
   }
-  for (const auto& r : summary["references"])
+  for (const auto& r : summary["references"]) {
+    if (r.contains("frames") && r["frames"].is_string()) {  // a truth read from files renders nothing
+      log << "  " << r["name"].get<std::string>() << ": read from " << r["frames"].get<std::string>() << "\n";
+      continue;
+    }
     log << "  " << r["name"].get<std::string>() << ": " << r["frames_rendered"] << " rendered (" << mean(r["gpu_ms"])
         << " ms/frame GPU at " << r["spp"] << " spp), " << r["frames_cached"] << " cached\n";
+  }
 }
 
 // The content of every file the run reads besides the experiment file (whose JSON is in the header):

@@ -169,6 +169,38 @@ std::string density_sweep_problem(const ExperimentSpec& s, const VariantSpec& v,
   }
 }
 
+nlohmann::json with_absolute_paths(const nlohmann::json& experiment, const std::string& file) {
+  nlohmann::json e = experiment;
+  if (!e.is_object()) return e;
+  const fs::path dir = fs::absolute(fs::path(file)).parent_path();
+  auto absolute = [&](nlohmann::json& v) {
+    if (v.is_string() && !v.get<std::string>().empty() && fs::path(v.get<std::string>()).is_relative())
+      v = (dir / v.get<std::string>()).lexically_normal().string();
+  };
+  if (e.contains("camera_path") && e["camera_path"].is_string()) {  // a file beside the experiment (load_path)
+    const auto builtins = core::CameraPath::builtin_names();
+    const std::string s = e["camera_path"];
+    std::error_code ec;
+    if (std::find(builtins.begin(), builtins.end(), s) == builtins.end() && fs::is_regular_file(dir / s, ec))
+      absolute(e["camera_path"]);
+  }
+  if (e.contains("scene") && e["scene"].is_object() && e["scene"].contains("sky") && e["scene"]["sky"].is_object() &&
+      e["scene"]["sky"].contains("hdri"))
+    absolute(e["scene"]["sky"]["hdri"]);
+  auto model_file = [&](nlohmann::json& material) {
+    if (material.is_object() && material.contains("glint_model") && material["glint_model"].is_object() &&
+        material["glint_model"].contains("file"))
+      absolute(material["glint_model"]["file"]);
+  };
+  if (e.contains("material")) model_file(e["material"]);
+  if (e.contains("variants") && e["variants"].is_array())
+    for (auto& v : e["variants"])
+      if (v.is_object())
+        for (const char* key : {"material", "truth_material"})
+          if (v.contains(key)) model_file(v[key]);
+  return e;
+}
+
 ExperimentSpec ExperimentSpec::load(const std::string& file) { return from_json(read_json_file(file), file); }
 
 ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::string& file) {

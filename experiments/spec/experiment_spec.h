@@ -169,6 +169,11 @@ nlohmann::json density_sweep_material(const VariantSpec& v, const DensitySweepSp
 std::string density_sweep_problem(const ExperimentSpec& s, const VariantSpec& v, const DensitySweepSpec::Method& m,
                                   double value);
 
+// `experiment` (the JSON of `file`) with every file it names made absolute, as the spec resolves them:
+// a camera-path file, the sky's HDRI, a user's glint model file in the experiment's and every variant's
+// "material" and "truth_material". For a copy that is run from another folder (tune's trials).
+nlohmann::json with_absolute_paths(const nlohmann::json& experiment, const std::string& file);
+
 // A variant's name becomes a folder of the run directory and a CSV cell: "" when it may, else what is
 // wrong and what is allowed (1 to 100 of A-Z a-z 0-9 . _ + -, not starting with '.' or '-', and not one
 // of the run folder's own names: reference, reference-*, motion, figures, frames.csv, summary.json,

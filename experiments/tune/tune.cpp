@@ -259,7 +259,8 @@ json identity(const json& d) {
 
 int tune(const TuneOptions& o, std::ostream& log) {
   const std::string file = resolve_experiment_path(o.experiment);  // bad input: run_guarded, the caller's
-  const json experiment = read_json_file(file);
+  // its files by absolute paths: the trials run copies of it from their own folders
+  const json experiment = with_absolute_paths(read_json_file(file), file);
   const std::string name = experiment.is_object() ? experiment.value("name", std::string()) : std::string();
   const fs::path dir = o.study_dir.empty() ? fs::path(results_path("tune")) / (name + "-" + o.base)
                                            : fs::path(o.study_dir);

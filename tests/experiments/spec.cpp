@@ -423,3 +423,38 @@ TEST(ExperimentSpec, OptionsThatWouldDoNothingAreRefused) {
                            "output": {"halves": true}})");
   expect_rejected(f, {"output.halves", "without \"scene\""});
 }
+
+// A copy of an experiment run from another folder (tune's trials) names its files by absolute paths,
+// resolved as the spec resolves them: a model file beside the experiment, in its material and a
+// variant's; the HDRI; a camera-path file; built-in names and absolute paths stay as they are.
+TEST(ExperimentSpec, AbsolutePathsForACopyRunElsewhere) {
+  TempFile t("{}");
+  const fs::path dir = t.dir.path();
+  std::ofstream(dir / "path.json") << "{}";
+  json j = minimal();
+  j["camera_path"] = "path.json";
+  j["scene"]["sky"] = {{"hdri", "sky.exr"}};
+  j["material"] = {{"glint_model", {{"file", "models/m.glsl"}}}};
+  j["variants"] = json::parse(R"([{"name": "a", "material": {"glint_model": {"file": "/abs/n.glsl"}}},
+                                  {"name": "b", "truth_material": {"glint_model": {"file": "../o.glsl"}}}])");
+  const json a = glintlab::with_absolute_paths(j, t.path.string());
+  const std::string d = fs::absolute(dir).lexically_normal().string();
+  EXPECT_EQ(a["camera_path"], (fs::path(d) / "path.json").string());
+  EXPECT_EQ(a["scene"]["sky"]["hdri"], (fs::path(d) / "sky.exr").string());
+  EXPECT_EQ(a["material"]["glint_model"]["file"], (fs::path(d) / "models/m.glsl").string());
+  EXPECT_EQ(a["variants"][0]["material"]["glint_model"]["file"], "/abs/n.glsl");
+  EXPECT_EQ(a["variants"][1]["truth_material"]["glint_model"]["file"],
+            (fs::path(d).parent_path() / "o.glsl").lexically_normal().string());
+  j["camera_path"] = "orbit-close";  // a built-in name
+  EXPECT_EQ(glintlab::with_absolute_paths(j, t.path.string())["camera_path"], "orbit-close");
+}
+
+// A model's own parameter where the material has another model: the refusal names the model that
+// declares it.
+TEST(ExperimentSpec, AnotherModelsParameterNamesThatModel) {
+  json j = minimal();
+  j["material"] = {{"glints", {{"size_variation", 0.5}}}};
+  expect_rejected(j, {"material.glints.size_variation", "glint model kajs", "the glint model zirr"});
+  j["material"]["glint_model"] = "zirr";
+  EXPECT_NO_THROW(ExperimentSpec::from_json(j, kFile));
+}
