@@ -31,11 +31,22 @@ EShLanguage to_glslang(core::ShaderStage s) {
   return EShLangCompute;
 }
 
+// Includes nest at most this deep: a file that includes itself (or a cycle of files) without a guard
+// would otherwise recurse until memory runs out. glintlab's own shaders nest 5 deep.
+constexpr size_t kMaxIncludeDepth = 32;
+
 // glslang's #include callbacks, answered by the source's own resolver.
 class Includer : public glslang::TShader::Includer {
  public:
   explicit Includer(const Source& src) : src_(src) {}
-  IncludeResult* includeLocal(const char* name, const char* includer, size_t /*depth*/) override {
+  IncludeResult* includeLocal(const char* name, const char* includer, size_t depth) override {
+    if (depth > kMaxIncludeDepth) {  // an empty header name makes glslang report the text as the error
+      auto msg = std::make_unique<Found>();
+      msg->text = "includes nest deeper than " + std::to_string(kMaxIncludeDepth) +
+                  " files (does a file include itself, or two files each other, without an include guard?)";
+      Found* f = msg.release();
+      return new IncludeResult("", f->text.data(), f->text.size(), f);
+    }
     auto found = std::make_unique<Found>();
     if (!src_.include || !src_.include(name, includer, found->path, found->text)) return nullptr;
     Found* f = found.release();

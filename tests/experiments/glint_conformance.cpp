@@ -239,6 +239,32 @@ TEST(UserGlintModel, SyntaxErrorExitsThreeNamingItsLine) {
   EXPECT_NE(log.str().find("bad.glsl:5"), std::string::npos) << log.str();
 }
 
+// A model file that includes itself, or two that include each other, without a guard: a compile error
+// (exit 3) naming the file and line, not a preprocessor that recurses until memory runs out.
+TEST(UserGlintModel, IncludeCyclesAreACompileErrorNotARunaway) {
+  test::TempDir dir("user_glint_model");
+  const std::string body = "#include \"glint/query.glsl\"\n#include \"common/beckmann.glsl\"\n"
+                           "vec3 glint_D(GlintQuery q) { return vec3(beckmann_D(q.h, vec2(0.0), q.alpha_g)); }\n";
+  write(dir.path() / "self.glsl", "// glint_model truth=grains limit=beckmann checks=finite\n#include \"self.glsl\"\n" + body);
+  write(dir.path() / "a.glsl", "// glint_model truth=grains limit=beckmann checks=finite\n#include \"b.glsl\"\n" + body);
+  write(dir.path() / "b.glsl", "#include \"a.glsl\"\n");
+  for (const char* f : {"self.glsl", "a.glsl"}) {
+    write(dir.path() / "e.json", user_experiment({{"file", f}}).dump());
+    std::ostringstream log;
+    int code = -1;
+    try {
+      code = run_experiment(options(dir.path() / "e.json", dir.path() / "out"), log);
+    } catch (const core::ShaderCompileError& e) {
+      code = 3;
+      log << e.what();
+    }
+    EXPECT_EQ(code, 3) << f << ": " << log.str();
+    EXPECT_NE(log.str().find("includes nest deeper than 32"), std::string::npos) << log.str();
+    EXPECT_NE(log.str().find(std::string(f == std::string("self.glsl") ? "self.glsl:2" : ".glsl:")), std::string::npos)
+        << log.str();
+  }
+}
+
 TEST(UserGlintModel, ResumeAfterTheFileChangedIsRefused) {
   test::TempDir dir("user_glint_model");
   fs::copy_file(kModels / "beckmann_inline.glsl", dir.path() / "m.glsl");
