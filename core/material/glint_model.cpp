@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <set>
+#include <regex>
 #include <sstream>
 
 namespace glintlab::core {
@@ -153,11 +155,62 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
   return d;
 }
 
+namespace {
+
+// What a model's code may not declare or do: resources of its own (the driver would read a binding the
+// pipeline does not have, or crash on a set it does not know), work-group memory, or leave the
+// pipeline's control flow (discard). Qualifiers, and the opaque types by their GLSL names.
+std::string forbidden_token(const std::string& t) {
+  static const std::set<std::string> words = {"layout", "uniform", "buffer", "shared", "discard", "barrier",
+                                              "atomic_uint", "subpassInput", "subpassInputMS",
+                                              "accelerationStructureEXT", "rayQueryEXT", "demote"};
+  static const std::regex opaque("[iu]?(sampler|image|texture)(1D|2D|3D|Cube|2DRect|Buffer|2DMS)?(Array)?(Shadow)?");
+  if (words.count(t)) return t;
+  if (std::regex_match(t, opaque)) return t;
+  return "";
+}
+
+// The line of `text` where `token` first stands as a word, or 0 (it came from a macro or an include).
+int line_of_word(const std::string& text, const std::string& token) {
+  const std::regex word("\\b" + token + "\\b");
+  std::smatch m;
+  if (!std::regex_search(text, m, word)) return 0;
+  return int(std::count(text.begin(), text.begin() + m.position(0), '\n')) + 1;
+}
+
+// A user's model file, preprocessed as glintlab compiles it (its includes resolved, its macros
+// expanded: a "#define B buffer" hides nothing), must not declare resources, work-group memory or
+// discard. ConfigError naming the file, the line where the word stands (when it does) and why.
+void refuse_what_a_model_may_not_declare(const std::string& path, const std::string& text) {
+  std::string expanded;
+  try {
+    expanded = default_shader_compiler().preprocess(path, ShaderStage::Compute);
+  } catch (const ShaderCompileError&) {
+    return;  // a preprocessing error is the compiler's to report, with its line
+  }
+  static const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
+  for (auto it = std::sregex_iterator(expanded.begin(), expanded.end(), identifier); it != std::sregex_iterator(); ++it) {
+    const std::string bad = forbidden_token(it->str());
+    if (bad.empty()) continue;
+    const int line = line_of_word(text, bad);
+    throw ConfigError(path + (line ? ":" + std::to_string(line) : std::string()) + ": a glint model may not use \"" +
+                      bad + "\" (" + (bad == "discard" || bad == "demote" ? "it may not leave the pipeline's control flow"
+                                       : bad == "barrier" || bad == "shared" ? "it has no work group"
+                                       : "it may not declare resources of its own: its data comes through "
+                                         "\"// glint_table size=N\" and glint_table_entry") +
+                      "); glintlab runs it inside its own shaders");
+  }
+}
+
+}  // namespace
+
 GlintModelDecl glint_model_from_file(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw ConfigError(path + ": glint model file not found (a GLSL file with a glint_model declaration line)");
-  GlintModelDecl d = parse_glint_model(path, path, read_text(path));
+  const std::string text = read_text(path);
+  GlintModelDecl d = parse_glint_model(path, path, text);
+  refuse_what_a_model_may_not_declare(fs::absolute(path).lexically_normal().string(), text);
   d.file = fs::absolute(path).lexically_normal().string();
   d.builtin = false;
   if (d.truth != "self") {

@@ -151,14 +151,22 @@ std::string words_define(const std::string& name, const void* data, std::size_t 
   return out;
 }
 
-std::string ShaderCompiler::source_hash(const std::string& path, ShaderStage stage,
-                                        const std::vector<std::string>& defines) {
+std::string ShaderCompiler::preprocess(const std::string& path, ShaderStage stage,
+                                       const std::vector<std::string>& defines) {
   const glsl::Source src = load(shader_dir_, path, stage, defines);
   std::string expanded, log;
   if (!glsl::api().preprocess(src, expanded, log))
     throw ShaderCompileError(format_log(log, src.path, stage_name(stage)));
+  return expanded;
+}
+
+std::string ShaderCompiler::source_hash(const std::string& path, ShaderStage stage,
+                                        const std::vector<std::string>& defines) {
   ContentHash h;
-  h.add(std::string_view("glslang-spv1.5-vk1.2")).add(int64_t(stage)).add(src.preamble).add(expanded);
+  h.add(std::string_view("glslang-spv1.5-vk1.2"))
+      .add(int64_t(stage))
+      .add(preamble(defines))
+      .add(preprocess(path, stage, defines));
   return h.hex();
 }
 

@@ -41,6 +41,8 @@ class ShaderCompiler {
   CompiledShader compile(const std::string& path, ShaderStage stage, const std::vector<std::string>& defines = {});
   // Preprocesses only: the hash that identifies what compile() would produce.
   std::string source_hash(const std::string& path, ShaderStage stage, const std::vector<std::string>& defines = {});
+  // The preprocessed text (includes resolved, macros expanded, comments gone). ShaderCompileError on failure.
+  std::string preprocess(const std::string& path, ShaderStage stage, const std::vector<std::string>& defines = {});
 
   const std::string& shader_dir() const { return shader_dir_; }
   const std::string& cache_dir() const { return cache_dir_; }

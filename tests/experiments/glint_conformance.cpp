@@ -24,6 +24,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace fs = std::filesystem;
 using namespace glintlab;
@@ -262,6 +263,31 @@ TEST(UserGlintModel, IncludeCyclesAreACompileErrorNotARunaway) {
     EXPECT_NE(log.str().find("includes nest deeper than 32"), std::string::npos) << log.str();
     EXPECT_NE(log.str().find(std::string(f == std::string("self.glsl") ? "self.glsl:2" : ".glsl:")), std::string::npos)
         << log.str();
+  }
+}
+
+// A model that declares resources of its own (a descriptor set the pipeline does not have crashed the
+// driver; a binding outside the layout read unbound memory), work-group memory, or discards, is refused
+// before the driver sees it (exit 2, naming the file and line), a macro hiding the word included.
+TEST(UserGlintModel, ResourcesOfItsOwnAreRefusedBeforeTheDriver) {
+  test::TempDir dir("user_glint_model");
+  const std::string head = "// glint_model truth=grains limit=beckmann checks=finite\n#include \"glint/query.glsl\"\n"
+                           "#include \"common/beckmann.glsl\"\n";
+  const std::string plain = "vec3 glint_D(GlintQuery q) { return vec3(beckmann_D(q.h, vec2(0.0), q.alpha_g)); }\n";
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"layout(set = 3, binding = 0) buffer Evil { float x[]; };\n" + plain, "layout", ":4"},
+      {"layout(set = 0, binding = 7) uniform sampler2D t;\n" + plain, "layout", ":4"},
+      {"#define B buffer\nB Evil { float x[]; };\n" + plain, "buffer", ":4"},
+      {"shared float s[64];\n" + plain, "shared", ":4"},
+      {"vec3 glint_D(GlintQuery q) { if (q.h.z < 0.5) discard; return vec3(1.0); }\n", "discard", ":4"}};
+  for (const auto& [body, word, line] : cases) {
+    write(dir.path() / "m.glsl", head + body);
+    write(dir.path() / "e.json", user_experiment({{"file", "m.glsl"}}).dump());
+    std::ostringstream log;
+    EXPECT_EQ(run_experiment(options(dir.path() / "e.json", dir.path() / "out"), log), 2) << log.str();
+    EXPECT_NE(log.str().find("m.glsl" + line), std::string::npos) << log.str();
+    EXPECT_NE(log.str().find("may not use \"" + word + "\""), std::string::npos) << log.str();
+    EXPECT_FALSE(fs::exists(dir.path() / "out" / "records.jsonl"));
   }
 }
 
