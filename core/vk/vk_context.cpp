@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -271,6 +272,16 @@ bool VkContext::format_supports(VkFormat format, VkFormatFeatureFlags features) 
   return (p.optimalTilingFeatures & features) == features;
 }
 
+double gpu_timeout_s() {
+  static const double t = [] {
+    const char* v = std::getenv("GLINTLAB_GPU_TIMEOUT_S");
+    char* end = nullptr;
+    const double x = v ? std::strtod(v, &end) : 0.0;
+    return v && end != v && *end == '\0' && x > 0 && x < 1e7 ? x : 600.0;
+  }();
+  return t;
+}
+
 void VkContext::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = pool_;
@@ -291,7 +302,17 @@ void VkContext::submit_and_wait(const std::function<void(VkCommandBuffer)>& reco
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd;
     vk_check(vkQueueSubmit(queue_, 1, &si, fence), "vkQueueSubmit");
-    vk_check(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    const VkResult waited = vkWaitForFences(device_, 1, &fence, VK_TRUE, uint64_t(gpu_timeout_s() * 1e9));
+    if (waited == VK_TIMEOUT) {
+      std::fprintf(stderr,
+                   "error: the device (%s) did not finish a submission in %g s: a shader that does not terminate "
+                   "(a glint model's loop?). It cannot be stopped, so glintlab exits now (code %d); "
+                   "GLINTLAB_GPU_TIMEOUT_S sets the limit.\n",
+                   info_.name.c_str(), gpu_timeout_s(), kExitDeviceHang);
+      std::fflush(nullptr);
+      std::_Exit(kExitDeviceHang);  // destructors would wait for the device forever
+    }
+    vk_check(waited, "vkWaitForFences");
   } catch (...) {
     if (fence) vkDestroyFence(device_, fence, nullptr);
     vkFreeCommandBuffers(device_, pool_, 1, &cmd);

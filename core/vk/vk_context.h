@@ -39,6 +39,11 @@ struct DeviceInfo {
   std::string api_version;
 };
 
+// The exit code of a device that does not finish a submission (experiments/cli/exit_codes.h: kExitDevice).
+constexpr int kExitDeviceHang = 3;
+// $GLINTLAB_GPU_TIMEOUT_S when it is a number > 0, else 600: the longest one submission may run.
+double gpu_timeout_s();
+
 class VkContext {
  public:
   explicit VkContext(const ContextOptions& options = {});
@@ -74,6 +79,9 @@ class VkContext {
   bool format_supports(VkFormat format, VkFormatFeatureFlags features) const;
 
   // Records with `record` into a fresh primary command buffer, submits and waits.
+  // A submission that has not finished after gpu_timeout_s() (a shader that never terminates: lavapipe
+  // has no watchdog) cannot be stopped, and the device cannot be destroyed while it runs: the process
+  // prints what happened and exits with kExitDeviceHang at once (glintlab's "device" exit code).
   void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
 
   size_t validation_message_count() const;

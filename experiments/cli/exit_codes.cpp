@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <stdexcept>
 
+static_assert(glintlab::kExitDevice == glintlab::core::kExitDeviceHang,
+              "a device that does not finish exits with the device code (core/vk/vk_context.h)");
+
 namespace glintlab {
 
 int run_guarded(const std::function<int()>& body, std::ostream& err) {
