@@ -69,6 +69,20 @@ RunPlan make_plan(const ExperimentSpec& spec, int frames, bool measure, const me
              : same_model == 1           ? "reference-" + model_of(r)
                                          : "reference-" + plan.variants[size_t(r.variants.front())].spec->name;
   }
+  // Each truth writes the folders NAME, NAME-half-a and NAME-half-b: no two truths may share one (a user's
+  // model file named "kajs-half-a.glsl" would write into the Kajs truth's half A). A truth whose folders
+  // meet an earlier one's is numbered instead, "reference-K", K the first count that meets none.
+  auto folders = [](const std::string& n) { return std::vector<std::string>{n, n + "-half-a", n + "-half-b"}; };
+  auto meets = [&](size_t i) {
+    for (size_t j = 0; j < plan.references.size(); ++j)
+      for (const auto& a : folders(plan.references[i].name))
+        for (const auto& b : folders(plan.references[j].name))
+          if (j != i && a == b) return true;
+    return false;
+  };
+  int next = 1;
+  for (size_t i = plan.references.size(); i-- > 0;)  // the later truth takes the number
+    while (meets(i)) plan.references[i].name = "reference-" + std::to_string(next++);
 
   core::ContentHash h;
   // v4: supersampled passes (supersampling()); v5: the mesh itself (an adaptive grid depends on

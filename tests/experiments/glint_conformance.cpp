@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -380,4 +381,24 @@ TEST(UserGlintModel, NegativeValuesAreDefectsOfTheRun) {
   std::ostringstream log;
   EXPECT_EQ(run_experiment(o, log), 1) << log.str();
   EXPECT_NE(log.str().find("negative pixels"), std::string::npos) << log.str();
+}
+
+// Every truth writes NAME, NAME-half-a and NAME-half-b: a user's model file named kajs-half-a.glsl (its own
+// truth) beside the Kajs material must not write into the Kajs truth's half A; the later truth is numbered.
+TEST(UserGlintModel, TruthsNeverShareAFolder) {
+  test::TempDir dir("user_glint_model");
+  fs::copy_file(kModels / "beckmann_inline.glsl", dir.path() / "kajs-half-a.glsl");
+  nlohmann::json e = user_experiment({{"file", "kajs-half-a.glsl"}, {"truth", "self"}});
+  e["variants"].push_back({{"name", "thesis"}, {"material", {{"glint_model", "kajs"}}}});
+  e["output"] = {{"exr", true}, {"png", false}, {"halves", true}};
+  write(dir.path() / "e.json", e.dump());
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(options(dir.path() / "e.json", dir.path() / "out"), log), 0) << log.str();
+  const nlohmann::json s = nlohmann::json::parse(read(dir.path() / "out" / "summary.json"));
+  std::set<std::string> folders;
+  for (const auto& r : s["references"])
+    for (const char* suffix : {"", "-half-a", "-half-b"})
+      EXPECT_TRUE(folders.insert(r["name"].get<std::string>() + suffix).second) << r["name"] << suffix;
+  EXPECT_EQ(s["references"].size(), 2u);
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "reference-kajs-half-a"));  // the Kajs truth keeps its name
 }
