@@ -38,6 +38,33 @@ namespace glintlab {
 
 namespace {
 
+// The truth's two halves (--reference, --reference-b; "frames", "frames_b") must be two independent
+// estimates of one image: the same channels (a grey half beside an RGB one would be averaged into the
+// truth) and the same colour space, and not the same files or the same bytes (the floor, half their
+// difference, would read exactly 0). ConfigError naming both.
+void check_halves(const FrameFiles& a, const FrameFiles& b) {
+  const std::string both = "--reference '" + a.seq + "' and --reference-b '" + b.seq + "'";
+  if (a.channels != b.channels)
+    throw ConfigError(both + ": the halves have other channels (" + join(a.channels, ",") + " against " +
+                      join(b.channels, ",") + "): two halves of one truth are images of one kind");
+  if (a.space != b.space)
+    throw ConfigError(both + ": the halves are in other colour spaces (" + a.space + " against " + b.space +
+                      "): two halves of one truth are images of one kind");
+  if (a.array || b.array) return;
+  size_t same = 0;
+  for (size_t k = 0; k < a.paths.size() && k < b.paths.size(); ++k) {
+    std::error_code ec;
+    const bool one_file = fs::equivalent(a.paths[k], b.paths[k], ec);
+    if (one_file || (fs::file_size(a.paths[k], ec) == fs::file_size(b.paths[k], ec) && !ec &&
+                     file_content_hash(a.paths[k]) == file_content_hash(b.paths[k])))
+      ++same;
+  }
+  if (same > 0)
+    throw ConfigError(both + ": " + std::to_string(same) + " of " + std::to_string(a.paths.size()) +
+                      " frames are the same file or the same bytes in both halves; the truth's noise floor is half "
+                      "the difference of two independent halves (of equal samples), which these would make 0");
+}
+
 
 // A test's name becomes a folder of previews: the one rule of variant names (experiment_spec.h).
 void check_name(const std::string& name, const std::string& what) {
@@ -255,7 +282,10 @@ void open_colour_sequences(const MeasureOptions& o, const metrics::ColorManager&
     return f;
   };
   if (has_reference) p.reference = colour_source("--reference", o.reference, o.reference_space, o.reference_array);
-  if (!o.reference_b.empty()) p.reference_b = colour_source("--reference-b", o.reference_b, o.reference_space, nullptr);
+  if (!o.reference_b.empty()) {
+    p.reference_b = colour_source("--reference-b", o.reference_b, o.reference_space, nullptr);
+    if (p.reference) check_halves(*p.reference, *p.reference_b);
+  }
   std::set<std::string> names;
   for (const auto& t : o.tests) {
     const std::string name = !t.name.empty() ? t.name : t.array ? "test" : default_name(parse_sequence(t.seq, "--test"));

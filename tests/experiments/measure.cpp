@@ -713,3 +713,35 @@ TEST(FileContentHash, IsTheBytesInMegabytePieces) {
   EXPECT_NE(file_content_hash((dir.path() / "g.bin").string()), h.hex());
   EXPECT_THROW(file_content_hash((dir.path() / "missing.bin").string()), std::exception);
 }
+
+// The truth's halves must be two independent estimates of one image: the same folder or a
+// byte-identical copy (a floor of exactly 0), or a half of other channels (a grey half averaged into an
+// RGB truth), is exit 2 naming both, before anything is written.
+TEST_F(Measure, IdenticalOrIncompatibleHalvesAreRefused) {
+  const fs::path ref = run_dir() / "reference";
+  const fs::path copy = scratch("halves-copy");
+  fs::create_directories(copy);
+  for (const auto& e : fs::directory_iterator(ref)) fs::copy_file(e.path(), copy / e.path().filename());
+  for (const fs::path& b : {ref, copy}) {
+    MeasureOptions o = own_options("halves-same");
+    o.reference_b = b.string();
+    std::string log;
+    EXPECT_EQ(measure(o, &log), 2) << log;
+    EXPECT_NE(log.find("same file or the same bytes"), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(fs::path(o.out_dir) / "records.jsonl"));
+  }
+  // a grey half: the reference's luminance alone, as a Y-only EXR sequence
+  const fs::path grey = scratch("halves-grey");
+  fs::create_directories(grey);
+  for (const auto& e : fs::directory_iterator(ref)) {
+    const Image rgb = metrics::read_image(e.path().string());
+    Image y(rgb.width, rgb.height, 1);
+    for (size_t i = 0; i < size_t(rgb.width) * rgb.height; ++i) y.data[i] = rgb.data[i * rgb.channels + 1];
+    write_channels(grey / e.path().filename(), y, {"Y"});
+  }
+  MeasureOptions o = own_options("halves-grey");
+  o.reference_b = grey.string();
+  std::string log;
+  EXPECT_EQ(measure(o, &log), 2) << log;
+  EXPECT_NE(log.find("other channels"), std::string::npos) << log;
+}
