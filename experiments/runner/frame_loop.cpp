@@ -1,5 +1,7 @@
 #include "experiments/runner/frame_loop.h"
 
+#include "metrics/metric_registry.h"
+
 #include "core/util/strings.h"
 #include "experiments/runner/progress.h"
 #include "metrics/motion_check.h"
@@ -24,6 +26,15 @@ void void_metrics(metrics::NamedValues& values) {
     if (!is_pixel_count(name)) value = kNan;
 }
 
+// The metrics that compare a frame with the one before (the registry's "flicker" group): NaN where the
+// frame before had NaN, Inf or negative pixels, which they would otherwise average in.
+void void_temporal_metrics(metrics::NamedValues& values) {
+  for (auto& [name, value] : values) {
+    const metrics::MetricInfo* m = metrics::metric_info(name);
+    if (m && std::string(m->group) == "flicker" && !is_pixel_count(name)) value = kNan;
+  }
+}
+
 std::string defect_text(const metrics::PixelScan& s) {
   return std::to_string(s.nan) + " NaN, " + std::to_string(s.infinite) + " Inf, " + std::to_string(s.negative) +
          " negative pixels";
@@ -34,6 +45,7 @@ struct Truth {
   SourceFrame frame;
   std::optional<metrics::FrameMetrics::Reference> prepared;
   metrics::NamedValues floor;
+  bool bad_before = false;  // its frame before (in the same shot) had NaN, Inf or negative pixels
 };
 
 }  // namespace
@@ -47,9 +59,11 @@ struct FrameLoop::Impl {
   std::vector<metrics::FlickerTracker> half_trackers;  // per truth: its half B along the motion against half A
   std::shared_ptr<const metrics::FlickerReference> check_before;  // the motion check's frame before
   int check_before_k = -2;
+  std::vector<int> variant_bad, truth_bad;  // the last frame of each with NaN, Inf or negative pixels (-2: none)
 
   Impl(const RunPlan& p, LoopSources s, const metrics::FrameMetrics* f, std::ostream& l)
-      : plan(p), sources(std::move(s)), fm(f), log(l), trackers(p.variants.size()), half_trackers(p.references.size()) {}
+      : plan(p), sources(std::move(s)), fm(f), log(l), trackers(p.variants.size()), half_trackers(p.references.size()),
+        variant_bad(p.variants.size(), -2), truth_bad(p.references.size(), -2) {}
 
   Truth truth(int k, size_t r, SourceFrame f, const WorkSchedule& work, const FrameClock& clock,
               const MotionFrame& motion, bool own_frame, const std::vector<RecordSink*>& sinks);
@@ -81,10 +95,14 @@ Truth FrameLoop::Impl::truth(int k, size_t r, SourceFrame f, const WorkSchedule&
   rec.rebuilt = f.rebuilt;
   rec.wall_ms = f.wall_ms;
   rec.gpu_ms = f.gpu_ms;
+  t.bad_before = !(k == 0 || clock.cut) && truth_bad[r] == k - 1;
+  if (!f.scan.clean()) truth_bad[r] = k;
   if (fm && f.half_a && f.half_b) {  // the noise floor: every metric of half B against half A, along the motion
     if (k == 0 || clock.cut || !work.reference[r][kk - 1]) half_trackers[r].reset();
     if (!f.half_a_prepared) f.half_a_prepared = fm->prepare(f.half_a, false);
     rec.halves_metrics = fm->measure(*f.half_b, *f.half_a_prepared, motion.motion, half_trackers[r]);
+    if (!f.scan.clean()) void_metrics(rec.halves_metrics);  // no floor from a bad frame, nor from the next one
+    else if (t.bad_before) void_temporal_metrics(rec.halves_metrics);
     t.floor = metrics::noise_floor(rec.halves_metrics);
     rec.half_a = f.half_a.get();
     rec.half_b = f.half_b.get();
@@ -132,6 +150,8 @@ FrameRecord FrameLoop::Impl::variant_record(int k, size_t i, const SourceFrame& 
   rec.wall_ms = f.wall_ms;
   rec.image = f.image.get();
   rec.scan = f.scan;
+  const bool bad_before = !(k == 0 || clock.cut) && variant_bad[i] == k - 1;
+  if (!f.scan.clean()) variant_bad[i] = k;
   if (!work.measure[i][kk]) return rec;
   // The tracker compares with the previous frame: it restarts at a cut and where the previous frame
   // was not measured.
@@ -150,6 +170,7 @@ FrameRecord FrameLoop::Impl::variant_record(int k, size_t i, const SourceFrame& 
     rec.metric_cost_ms.emplace_back("flicker", ms_since(t0));
   }
   if (!f.scan.clean() || (truth && !truth->frame.scan.clean())) void_metrics(rec.metrics);
+  else if (bad_before || (truth && truth->bad_before)) void_temporal_metrics(rec.metrics);  // they compare with it
   if (sources.check_motion) {
     rec.metrics.emplace_back("motion_explained", me.given);
     rec.metrics.emplace_back("motion_explained_negated", me.negated);

@@ -745,3 +745,42 @@ TEST_F(Measure, IdenticalOrIncompatibleHalvesAreRefused) {
   EXPECT_EQ(measure(o, &log), 2) << log;
   EXPECT_NE(log.find("other channels"), std::string::npos) << log;
 }
+
+// One Inf pixel in frame 1 of a test, or of a truth's half: frame 1's metrics are NaN, and so are frame
+// 2's temporal metrics (they compare frame 2 with frame 1 along the motion), while its per-frame ones
+// stay; frame 3 is clean again. The truth's noise floor takes neither frame in: the summary's stays finite.
+TEST_F(Measure, ABadPixelVoidsTheTemporalMetricsOfTheNextFrameAndTheFloor) {
+  auto copy_with_inf = [&](const fs::path& from, const std::string& to, float scale) {
+    const fs::path dir = scratch(to);
+    fs::create_directories(dir);
+    for (int k = 0; k < 8; ++k) {
+      Image img = metrics::read_image((from / frame_name(k)).string());
+      for (float& x : img.data) x *= scale;
+      if (k == 1) img.data[size_t(10 * img.width + 10) * img.channels] = std::numeric_limits<float>::infinity();
+      write_channels(dir / frame_name(k), img, {"R", "G", "B"});
+    }
+    return dir;
+  };
+  MeasureOptions o = own_options("bad-pixel");
+  o.tests = {{"inf", copy_with_inf(run_dir() / "no-aa", "bad-test", 1.0f).string(), ""},
+             {"no-aa", (run_dir() / "no-aa").string(), ""}};
+  o.reference_b = copy_with_inf(run_dir() / "reference", "bad-half-b", 1.01f).string();
+  o.motion = (run_dir() / "motion").string();
+  std::string log;
+  EXPECT_EQ(measure(o, &log), 1) << log;  // the defects are counted: exit 1
+  const Rows rows = read_csv(scratch("bad-pixel") / "frames.csv");
+  for (const char* v : {"inf", "no-aa"}) {
+    SCOPED_TRACE(v);
+    EXPECT_TRUE(std::isnan(cell(rows, v, 1, "temporal_error_mc")));
+    EXPECT_TRUE(std::isnan(cell(rows, v, 2, "temporal_error_mc")));
+    EXPECT_TRUE(std::isnan(cell(rows, v, 2, "flicker_excess")));
+    EXPECT_TRUE(std::isfinite(cell(rows, v, 3, "temporal_error_mc")));
+    EXPECT_TRUE(std::isfinite(cell(rows, v, 3, "flicker_excess")));
+  }
+  EXPECT_TRUE(std::isfinite(cell(rows, "inf", 2, "deltaE2000")));  // frame 2's own metrics stand
+  EXPECT_TRUE(std::isnan(cell(rows, "no-aa", 2, "floor_temporal_error_mc")));
+  EXPECT_TRUE(std::isfinite(cell(rows, "no-aa", 3, "floor_temporal_error_mc")));
+  const nlohmann::json s = read_json(scratch("bad-pixel") / "summary.json");
+  ASSERT_TRUE(s["references"][0]["floor"]["temporal_error_mc"].is_number()) << s["references"][0].dump();
+  EXPECT_TRUE(s["references"][0]["floor"]["flicker_excess"].is_number());
+}
