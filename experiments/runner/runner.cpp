@@ -6,6 +6,7 @@
 #include "core/util/content_hash.h"
 #include "core/util/data_dir.h"
 #include "core/util/json_check.h"
+#include "core/vk/shader_compiler.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
 #include "experiments/runner/density_sweep.h"
@@ -83,7 +84,11 @@ nlohmann::json run_input_hashes(const ExperimentSpec& spec, const metrics::Color
     out["hdri " + spec.sky.hdri] = file_content_hash(spec.sky.hdri);
   out["ocio_config"] = file_content_hash(cm.config_path());
   for (const auto& v : spec.variants)
-    if (v.material.glint_file && !v.material.glint_file->builtin) out["glint_model " + v.material.glint_file->file] = file_content_hash(v.material.glint_file->file);
+    for (const core::SandParams* m : {&v.material, v.truth_material ? &*v.truth_material : nullptr})
+      if (m && m->glint_file && !m->glint_file->builtin)  // the file (its declarations) and what it includes
+        out["glint_model " + m->glint_file->file] =
+            file_content_hash(m->glint_file->file) + " " +
+            core::default_shader_compiler().source_hash(m->glint_file->file, core::ShaderStage::Compute);
   auto add = [&](const std::string& seq, const std::string& what) {
     if (seq.empty()) return;
     const std::vector<int> numbers = first_frame_numbers(seq, spec.frames, what);

@@ -316,6 +316,17 @@ TEST(UserGlintModel, ResumeAfterTheFileChangedIsRefused) {
   std::ostringstream changed;
   EXPECT_EQ(run_experiment(o, changed), 2) << changed.str();
   EXPECT_NE(changed.str().find("--resume"), std::string::npos) << changed.str();
+  // a file the model includes is one of the run's inputs too
+  write(dir.path() / "inc.glsl", "float user_scale() { return 1.0; }\n");
+  write(dir.path() / "m.glsl", "#include \"inc.glsl\"\n" + read(dir.path() / "m.glsl"));
+  o.resume = false;
+  std::ostringstream fresh;
+  ASSERT_EQ(run_experiment(o, fresh), 0) << fresh.str();
+  o.resume = true;
+  write(dir.path() / "inc.glsl", "float user_scale() { return 2.0; }\n");
+  std::ostringstream included;
+  EXPECT_EQ(run_experiment(o, included), 2) << included.str();
+  EXPECT_NE(included.str().find("glint_model"), std::string::npos) << included.str();
 }
 
 TEST(UserGlintModel, AModelWithADataTableRendersAsTheModelItComputes) {
