@@ -2,6 +2,7 @@
 
 #include "core/material/sand_material.h"
 #include "core/util/atomic_file.h"
+#include "core/util/content_hash.h"
 #include "core/util/io_error.h"
 #include "core/util/json_check.h"
 #include "core/vk/compute_harness.h"
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <mutex>
 
@@ -49,12 +51,29 @@ std::vector<std::string> table_defines(const GlintModelDecl& d) {
   return defines;
 }
 
-bool read_table(const fs::path& file, size_t n, std::vector<float>& out) {
+// A cached table is its n floats and, after them, the 32 hex digits of their XXH3-128 hash: an entry
+// damaged on disk (or cut short) does not match and is generated again.
+constexpr size_t kChecksumBytes = 32;
+
+std::string table_checksum(const std::vector<float>& t) {
+  ContentHash h;
+  h.add(t.data(), t.size() * sizeof(float));
+  return h.hex();
+}
+
+// The table of `file` when it is whole; false when it is missing, of another size or damaged (then
+// `*damaged` is set for an entry that exists but does not match its checksum).
+bool read_table(const fs::path& file, size_t n, std::vector<float>& out, bool* damaged) {
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) != n * sizeof(float)) return false;
+  if (!fs::is_regular_file(file, ec)) return false;
   std::ifstream in(file, std::ios::binary);
   out.resize(n);
-  return bool(in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(float))));
+  std::string sum(kChecksumBytes, '\0');
+  const bool whole = fs::file_size(file, ec) == n * sizeof(float) + kChecksumBytes &&
+                     in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(float))) &&
+                     in.read(sum.data(), std::streamsize(sum.size())) && sum == table_checksum(out);
+  if (!whole) *damaged = true;
+  return whole;
 }
 
 }  // namespace
@@ -78,9 +97,14 @@ std::shared_ptr<const std::vector<float>> glint_table(const VkContext& ctx, cons
     return dir.empty() ? fs::path() : fs::path(dir) / "glint-tables" / (key + ".f32");
   };
   const fs::path file = path_in(disk_dir()), fallback = path_in(default_disk_dir());
-  const bool cached = !file.empty() && read_table(file, d.table_size, table);
+  bool damaged = false;
+  const bool cached = !file.empty() && read_table(file, d.table_size, table, &damaged);
   // a table generated where no run asked for it (glint-test) serves a run too; the run keeps its copy
-  const bool found = cached || (!fallback.empty() && fallback != file && read_table(fallback, d.table_size, table));
+  const bool found =
+      cached || (!fallback.empty() && fallback != file && read_table(fallback, d.table_size, table, &damaged));
+  if (!found && damaged)
+    std::cerr << "note: the cached glint table of " << (d.file.empty() ? d.name : d.file) << " (" << file.string()
+              << ") does not match its checksum: generating it again\n";
   if (!found) table = run_compute(ctx, kTableShader, defines, {}, d.table_size, d.table_size);
   for (size_t i = 0; i < table.size(); ++i)
     if (!std::isfinite(table[i]))
@@ -91,6 +115,8 @@ std::shared_ptr<const std::vector<float>> glint_table(const VkContext& ctx, cons
     write_file_atomic(file, [&](const fs::path& tmp) {
       std::ofstream out(tmp, std::ios::binary);
       out.write(reinterpret_cast<const char*>(table.data()), std::streamsize(table.size() * sizeof(float)));
+      const std::string sum = table_checksum(table);
+      out.write(sum.data(), std::streamsize(sum.size()));
       if (!out) throw IoError(tmp.string() + ": cannot write the glint table");
     });
   }

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -412,4 +413,38 @@ TEST(UserGlintModel, TruthsNeverShareAFolder) {
       EXPECT_TRUE(folders.insert(r["name"].get<std::string>() + suffix).second) << r["name"] << suffix;
   EXPECT_EQ(s["references"].size(), 2u);
   EXPECT_TRUE(fs::exists(dir.path() / "out" / "reference-kajs-half-a"));  // the Kajs truth keeps its name
+}
+
+// The glint table cached on disk carries its checksum: an entry damaged on disk (every value x3) is
+// generated again, with a note, and the model reads what it computes (the same figures as the first
+// run), not the damaged values. Two fresh processes, so neither reads the other's memory.
+TEST(UserGlintModel, ADamagedCachedTableIsGeneratedAgain) {
+  test::TempDir dir("glint_table_cache");
+  const std::string run = "XDG_CACHE_HOME=" + dir.path().string() + " " + GLINTLAB_CLI + " glint-test " +
+                          (kModels / "beckmann_table.glsl").string() + " --json";
+  ASSERT_EQ(std::system((run + " > " + (dir.path() / "first.json").string() + " 2>&1").c_str()), 0)
+      << read(dir.path() / "first.json");
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(dir.path() / "glintlab" / "glint-tables")) entries.push_back(e.path());
+  ASSERT_EQ(entries.size(), 1u);
+  std::ifstream in(entries[0], std::ios::binary);
+  std::string bytes(std::istreambuf_iterator<char>(in), {});
+  ASSERT_GT(bytes.size(), 32u);
+  for (size_t i = 0; i + 4 <= bytes.size() - 32; i += 4) {  // every value x3, the checksum kept
+    float x;
+    std::memcpy(&x, bytes.data() + i, 4);
+    x *= 3;
+    std::memcpy(bytes.data() + i, &x, 4);
+  }
+  std::ofstream(entries[0], std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size()));
+  ASSERT_EQ(std::system((run + " > " + (dir.path() / "second.json").string() + " 2> " +
+                         (dir.path() / "second.err").string()).c_str()), 0)
+      << read(dir.path() / "second.err");
+  EXPECT_NE(read(dir.path() / "second.err").find("does not match its checksum"), std::string::npos)
+      << read(dir.path() / "second.err");
+  auto checks = [&](const char* f) {
+    const std::string t = read(dir.path() / f);
+    return nlohmann::json::parse(t.substr(t.find('{')))["checks"];
+  };
+  EXPECT_EQ(checks("first.json"), checks("second.json"));
 }
