@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <set>
 #include <regex>
@@ -41,6 +42,40 @@ bool parse_double(const std::string& s, double& v) {
   return in && in.peek() == std::char_traits<char>::eof() && std::isfinite(v);
 }
 
+// A value the shader's float holds as a finite number.
+bool fits_float(double x) { return std::isfinite(x) && std::fabs(x) <= double(std::numeric_limits<float>::max()); }
+
+// "" when `n` may name a parameter, else why not. A parameter is a float field of GlintQuery named
+// as declared and a key of the material's "glints": it must be lower_snake_case (upper case names are
+// the shaders' macros, which the preprocessor would expand inside the struct), not a GLSL keyword or
+// reserved word, not one of GlintQuery's own fields and not one of glintlab's common "glints" keys
+// (one JSON value would set both).
+std::string parameter_name_problem(const std::string& n) {
+  static const std::set<std::string> reserved = {
+      // GLSL 4.60 keywords (types included) and the words reserved for future use
+      "attribute", "const", "uniform", "varying", "buffer", "shared", "coherent", "volatile", "restrict",
+      "readonly", "writeonly", "atomic_uint", "layout", "centroid", "flat", "smooth", "noperspective", "patch",
+      "sample", "invariant", "precise", "break", "continue", "do", "for", "while", "switch", "case", "default",
+      "if", "else", "subroutine", "in", "out", "inout", "int", "void", "bool", "true", "false", "float", "double",
+      "discard", "return", "uint", "lowp", "mediump", "highp", "precision", "struct", "common", "partition",
+      "active", "asm", "class", "union", "enum", "typedef", "template", "this", "resource", "goto", "inline",
+      "noinline", "public", "static", "extern", "external", "interface", "long", "short", "half", "fixed",
+      "unsigned", "superp", "input", "output", "filter", "sizeof", "cast", "namespace", "using", "demote",
+      // GlintQuery's own fields (glint/query.glsl)
+      "uv", "duv_dx", "duv_dy", "wi", "wo", "h", "dh_dx", "dh_dy", "alpha_g", "alpha_l", "density", "sun_cone",
+      "rough",
+      // glintlab's common "glints" keys (core/material/sand_material.h)
+      "log_density", "relative_roughness", "intensity", "light_cone"};
+  static const std::regex snake("[a-z][a-z0-9_]*");
+  static const std::regex type_name("([biud]?vec[234]|d?mat[234](x[234])?|[iu]?(sampler|image|texture)\\w*)");
+  if (!std::regex_match(n, snake))
+    return "parameter name \"" + n + "\" must be lower_snake_case (a-z, 0-9, _; upper case names are macros)";
+  if (n.rfind("gl_", 0) == 0 || reserved.count(n) || std::regex_match(n, type_name))
+    return "parameter name \"" + n + "\" is a GLSL keyword or reserved word, a GlintQuery field or a common " +
+           "\"glints\" key; give the parameter another name";
+  return "";
+}
+
 const char* kModelSyntax =
     "// glint_model truth=self|grains limit=beckmann|ggx checks=finite,unbiased,limit,deterministic "
     "[fails=CHECK,...]";
@@ -63,7 +98,8 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
   d.name = name;
   d.content_hash = ContentHash().add(std::string_view(text)).hex();
   bool declared = false;
-  std::istringstream in(text);
+  const bool bom = text.rfind("\xEF\xBB\xBF", 0) == 0;  // a UTF-8 byte-order mark before the first line
+  std::istringstream in(bom ? text.substr(3) : text);
   std::string line;
   int line_no = 0;
   auto fail = [&](const std::string& what, const char* syntax) {
@@ -107,6 +143,7 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
       d.table_size = uint32_t(n);
     } else {
       if (fields.empty() || !is_identifier(fields[0])) fail("a parameter needs a GLSL identifier as its name", kParameterSyntax);
+      if (const std::string why = parameter_name_problem(fields[0]); !why.empty()) fail(why, kParameterSyntax);
       GlintParameter p;
       p.name = fields[0];
       bool has_def = false, has_range = false;
@@ -122,8 +159,10 @@ GlintModelDecl parse_glint_model(const std::string& name, const std::string& whe
           p.is_bool = true;
         } else if (key == "range") {
           auto lohi = split(value, ',');
-          if (lohi.size() != 2 || !parse_double(lohi[0], p.lo) || !parse_double(lohi[1], p.hi) || p.lo > p.hi)
-            fail("range of " + p.name + " must be two finite numbers LO,HI with LO <= HI", kParameterSyntax);
+          if (lohi.size() != 2 || !parse_double(lohi[0], p.lo) || !parse_double(lohi[1], p.hi) || p.lo > p.hi ||
+              !fits_float(p.lo) || !fits_float(p.hi))
+            fail("range of " + p.name + " must be two finite numbers LO,HI with LO <= HI, each within a float's "
+                 "range (|x| <= 3.4e38: the shader reads a float)", kParameterSyntax);
           has_range = true;
         } else {
           fail("unknown field \"" + f + "\" of parameter " + p.name, kParameterSyntax);

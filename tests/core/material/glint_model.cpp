@@ -101,6 +101,16 @@ TEST(GlintModel, DeclarationsAreParsedAndMalformedOnesNamed) {
   expect_error(head + "// glint_parameter b default=yes type=bool\n", "m.glsl:2: default of bool b");
   expect_error(head + "// glint_parameter k default=1 range=0,1\n// glint_parameter k default=1 range=0,1\n",
                "m.glsl:3: parameter k declared twice");
+  // names the struct or the material cannot take: GLSL's words, GlintQuery's fields, the common glints
+  // keys, macros (upper case); exit 2 at the declaration's line, not a compile error in query.glsl
+  for (const char* n : {"float", "in", "sample", "filter", "uv", "density", "rough", "SAND_GLINTS", "log_density",
+                        "vec3", "gl_foo", "Size"})
+    expect_error(head + "// glint_parameter " + std::string(n) + " default=1 range=0,2\n", "m.glsl:2: parameter name");
+  // a default or range beyond a float (1e300 reached the GPU as inf)
+  expect_error(head + "// glint_parameter k default=1e300 range=0,1e301\n", "m.glsl:2: range of k");
+  // a byte-order mark does not hide the declaration
+  const auto bom = core::parse_glint_model("m", "m.glsl", "\xEF\xBB\xBF" + head + "// glint_parameter k default=1 range=0,2\n");
+  EXPECT_EQ(bom.parameters.size(), 1u);
   // checks the published method fails, and a data table
   auto f = core::parse_glint_model("f", "f.glsl",
                                    "// glint_model checks=finite,deterministic fails=unbiased,limit\n"
