@@ -519,7 +519,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   c->add_option("--view", cmp->display_view,
                 "measure display-referred, as this OCIO DISPLAY/VIEW shows the images (e.g. sRGB/Standard)");
   c->add_flag("--flip-ldr", cmp->flip_ldr, "LDR-FLIP instead of HDR-FLIP");
-  c->add_option("--ppd,--pixels-per-degree", cmp->ppd,
+  CLI::Option* ppd = c->add_option("--ppd,--pixels-per-degree", cmp->ppd,
                 "FLIP: observer's pixels per degree (default 67.0206: 0.7 m from a 0.7 m wide 3840 px monitor)");
   c->add_option("--monitor-distance", cmp->monitor_distance, "FLIP: distance to the monitor in metres (default 0.7)");
   c->add_option("--monitor-width", cmp->monitor_width, "FLIP: monitor width in metres (default 0.7)");
@@ -529,11 +529,15 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   c->add_option("--stop-exposure", cmp->stop_exposure, "HDR-FLIP stop exposure in stops (default: from the reference)");
   CLI::Option* num = c->add_option("--num-exposures", cmp->num_exposures,
                                     "HDR-FLIP number of exposures, >= 1 (default: max(2, ceil(stop - start)))");
-  c->callback([cmp, reference, num, threshold, &exit_code] {
+  c->callback([cmp, reference, num, threshold, ppd, &exit_code] {
     exit_code = run_guarded(
         [&] {
           if (threshold->count() > 0 && std::isnan(cmp->threshold)) {  // NaN means "not given" in CompareOptions
             std::cerr << "compare: --threshold must be a number in [0, 1] (a mean FLIP error), got nan\n";
+            return int(kExitBadInput);
+          }
+          if (ppd->count() > 0 && std::isnan(cmp->ppd)) {  // likewise
+            std::cerr << "compare: --ppd must be a finite number of pixels per degree > 0, got nan\n";
             return int(kExitBadInput);
           }
           if (num->count() > 0 && (cmp->num_exposures < 1 || cmp->num_exposures > metrics::kFlipMaxExposures)) {

@@ -217,6 +217,38 @@ def test_wrong_inputs_raise_documented_exceptions(tmp_path):
     assert not os.path.exists(tmp_path / "run")  # every error came before anything was written
 
 
+def test_arguments_of_the_wrong_kind_are_value_errors_naming_them(tmp_path):
+    """A wrong type, NaN or 0 where a number >= 1 is asked: ValueError naming the argument and what it
+    allows (not pybind11's TypeError, not "not given"); a bytes path is a path; a summary dict with an
+    integer no summary holds is a ValueError naming its key; the CLI refuses --ppd nan as it does
+    --threshold nan."""
+    ref = glintlab.read_image(HDR_REF)
+    cases = [(dict(ppd="abc"), r"compare: ppd='abc' is not allowed; allowed: a finite number"),
+             (dict(ppd=math.nan), r"ppd=nan is not allowed"),
+             (dict(threshold=math.nan), r"threshold=nan is not allowed"),
+             (dict(num_exposures=2**40), r"num_exposures=1099511627776 is not allowed; allowed: a whole number"),
+             (dict(num_exposures=0), r"num_exposures=0 is not allowed"),
+             (dict(tone_mapper=None), r"tone_mapper=None is not allowed; allowed: a string"),
+             (dict(flip_ldr=1), r"flip_ldr=1 is not allowed; allowed: True or False")]
+    for options, message in cases:
+        with pytest.raises(ValueError, match=message):
+            glintlab.compare(ref, ref, **options)
+    with pytest.raises(ValueError, match=r"metrics=5 is not allowed"):
+        glintlab.compare(ref, ref, metrics=5)
+    with pytest.raises(ValueError, match=r"flip: numExposures=0 is not allowed"):
+        glintlab.flip(ref, ref, numExposures=0)
+    with pytest.raises(ValueError, match=r"flip: tonemapper=None is not allowed"):
+        glintlab.flip(ref, ref, tonemapper=None)
+    assert glintlab.compare(os.fsencode(HDR_REF), os.fsencode(HDR_TEST), metrics="deltaE2000")["deltaE2000"]["mean"] \
+        == glintlab.compare(HDR_REF, HDR_TEST, metrics="deltaE2000")["deltaE2000"]["mean"]
+    summary = {"schema": "glintlab-summary/1", "experiment": "x", "variants": [
+        {"name": "a", "metrics": {"deltaE2000": {"mean": 10**400}}}]}
+    with pytest.raises(ValueError, match=r"summary.variants\[0\].metrics.deltaE2000.mean: the integer"):
+        glintlab.check(summary, summary)
+    p = cli("compare", HDR_TEST, HDR_REF, "--ppd", "nan", check=False)
+    assert p.returncode == 2 and "--ppd must be a finite number" in p.stderr, p.stderr
+
+
 def test_no_vulkan_device_raises_runtime_error(tmp_path):
     env = dict(os.environ, VK_ICD_FILENAMES="/nonexistent.json", VK_DRIVER_FILES="/nonexistent.json")
     code = ("import glintlab\ntry:\n    glintlab.run('regression', out=%r, frames=1)\n"

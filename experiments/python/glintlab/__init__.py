@@ -82,7 +82,35 @@ def _pixels(value, what, frames):
 
 
 def _is_path(value):
-    return isinstance(value, (str, os.PathLike))
+    return isinstance(value, (str, bytes, os.PathLike))
+
+
+# The compare options by kind: numbers (finite), whole numbers >= 1 (at most 2**31 - 1), names, a flag.
+# A value of another kind is a ValueError naming the option and what it allows, as the command line's;
+# NaN and 0 are refused, not read as "not given".
+_NUMBER_OPTIONS = ("itp_nits", "threshold", "ppd", "monitor_distance", "monitor_width", "start_exposure",
+                   "stop_exposure")
+_COUNT_OPTIONS = ("monitor_width_pixels", "num_exposures")
+_TEXT_OPTIONS = ("view", "tone_mapper", "ocio_config")
+
+
+def _checked_option(what, key, value, shown=None):
+    key_shown = shown or key
+    if key in _NUMBER_OPTIONS:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ValueError(f"{what}: {key_shown}={value!r} is not allowed; allowed: a finite number")
+        return float(value)
+    if key in _COUNT_OPTIONS:
+        if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 2**31 - 1:
+            raise ValueError(f"{what}: {key_shown}={value!r} is not allowed; allowed: a whole number >= 1")
+        return value
+    if key in _TEXT_OPTIONS:
+        if not isinstance(value, str):
+            raise ValueError(f"{what}: {key_shown}={value!r} is not allowed; allowed: a string")
+        return value
+    if not isinstance(value, bool):  # flip_ldr
+        raise ValueError(f"{what}: {key_shown}={value!r} is not allowed; allowed: True or False")
+    return value
 
 
 # ---------------------------------------------------------------- images
@@ -90,13 +118,13 @@ def _is_path(value):
 def read_image(path, layer=None):
     """R, G and B of an image file (of `layer` of a multi-layer OpenEXR) as float32 H x W x 3, as
     `glintlab measure` reads a frame (grey is copied to all three)."""
-    return _core.read_image(os.fspath(path), layer or "")
+    return _core.read_image(os.fsdecode(path), layer or "")
 
 
 def read_sequence(pattern, layer=None):
     """The frames of a SEQ (a folder of numbered frames, a pattern with %04d or ####, optionally
     :LAYER; experiments/sources/sequence.h) as float32 T x H x W x 3, in frame-number order."""
-    frames, _numbers = _core.read_sequence(os.fspath(pattern), layer or "")
+    frames, _numbers = _core.read_sequence(os.fsdecode(pattern), layer or "")
     return frames
 
 
@@ -107,7 +135,7 @@ _COMPARE_OPTIONS = ("itp_nits", "view", "threshold", "flip_ldr", "ppd", "monitor
 
 def _compare_input(value, name, space):
     if _is_path(value):
-        return (os.fspath(value), None, "", 0)
+        return (os.fsdecode(value), None, "", 0)
     a, tag = _pixels(value, f"compare: {name}", frames=False)
     return (name, a, space or tag, a.shape[2])
 
@@ -119,9 +147,12 @@ def _comparison(reference, tests, metrics, space, options):
     o = _core.CompareOptions()
     # A given space applies to files and arrays alike (--space); an array's own rule otherwise.
     o.space = space or ""
+    if metrics is not None and not isinstance(metrics, str) and not (
+            isinstance(metrics, (list, tuple)) and all(isinstance(m, str) for m in metrics)):
+        raise ValueError(f"compare: metrics={metrics!r} is not allowed; allowed: a metric name or a list of names")
     o.metrics = [metrics] if isinstance(metrics, str) else list(metrics or [])
     for key, value in options.items():
-        setattr(o, key, value)
+        setattr(o, key, _checked_option("compare", key, value))
     names = ["test"] if len(tests) == 1 else [f"test {i + 1}" for i in range(len(tests))]
     ref = _compare_input(reference, "reference", space)
     text, maps, err, _code = _core.compare(ref, [_compare_input(t, n, space) for t, n in zip(tests, names)], o)
@@ -169,7 +200,7 @@ def flip(reference, test, mode="hdr", parameters=None, space=None, **more):
         raise ValueError(f"flip: unknown parameter '{unknown[0]}'; allowed: {', '.join(_FLIP_PARAMETERS)}")
     if str(mode).lower() not in ("hdr", "ldr"):
         raise ValueError(f"flip: mode '{mode}' is not allowed; allowed: hdr, ldr (any case)")
-    options = {_FLIP_PARAMETERS[k]: v for k, v in given.items()}
+    options = {_FLIP_PARAMETERS[k]: _checked_option("flip", _FLIP_PARAMETERS[k], v, k) for k, v in given.items()}
     options["flip_ldr"] = str(mode).lower() == "ldr"
     result, maps = _comparison(reference, [test], ["flip"], space, options)
     mean = result["metrics"]["flip"]["mean"]
@@ -187,7 +218,7 @@ def _sequence(value, what, name, channel_names):
     """(SEQ, space, None) for a SEQ; ("", space, (array, name, channel names)) for an array, which the
     measurement reads in place as frames in memory, its channels named as a file's would be."""
     if _is_path(value):
-        return os.fspath(value), "", None
+        return os.fsdecode(value), "", None
     a, space = _pixels(value, what, frames=True)
     names = channel_names(a.shape[3])
     if names is None:
@@ -299,10 +330,27 @@ def run(experiment, out=None, variants=None, frames=None, resolution=None):
         return json.load(f)
 
 
-def _json_source(value):
+def _json_numbers_fit(value, where):
+    """ValueError naming the key of a number no summary holds: an integer beyond 64 bits (glintlab
+    reads summary.json numbers as doubles and 64-bit integers)."""
     if isinstance(value, dict):
-        return json.dumps(value, allow_nan=False), True
-    return os.fspath(value), False
+        for k, v in value.items():
+            _json_numbers_fit(v, f"{where}.{k}")
+    elif isinstance(value, (list, tuple)):
+        for i, v in enumerate(value):
+            _json_numbers_fit(v, f"{where}[{i}]")
+    elif isinstance(value, int) and not isinstance(value, bool) and not -2**63 <= value < 2**64:
+        raise ValueError(f"{where}: the integer {str(value)[:20]}... is not allowed; allowed: a number of 64 bits")
+
+
+def _json_source(value, what):
+    if isinstance(value, dict):
+        _json_numbers_fit(value, what)
+        try:
+            return json.dumps(value, allow_nan=False), True
+        except ValueError as e:
+            raise ValueError(f"{what}: {e}") from None
+    return os.fsdecode(value), False
 
 
 def check(summary, baseline, tolerances=None):
@@ -311,8 +359,8 @@ def check(summary, baseline, tolerances=None):
     regressions: the rows that failed, each {"variant", "metric", "baseline", "current", "change",
     "tolerance", "note"}."""
     tol = [f"{k}={float(v)!r}" for k, v in (tolerances or {}).items()]
-    s, s_text = _json_source(summary)
-    b, b_text = _json_source(baseline)
+    s, s_text = _json_source(summary, "summary")
+    b, b_text = _json_source(baseline, "baseline")
     rows = _core.check(s, s_text, b, b_text, tol)
     regressions = [{k: r[k] for k in ("variant", "metric", "baseline", "current", "change", "tolerance", "note")}
                    for r in rows if r["regression"]]
