@@ -45,18 +45,24 @@ const char* kTiny = R"({
   "output": {"exr": true, "png": true, "every": 2, "contact_sheet": true}
 })";
 
+// The options of a run of DIR/FILE into DIR/out with its own cache (no report: report.cpp tests it).
+RunOptions run_options(const fs::path& dir, const std::string& file, bool validation = true) {
+  RunOptions opt;
+  opt.report = false;
+  opt.experiment = (dir / file).string();
+  opt.out_dir = (dir / "out").string();
+  opt.cache_dir = (dir / "cache").string();
+  opt.validation = validation;
+  return opt;
+}
+
 }  // namespace
 
 TEST(Runner, RunWritesEveryMetricForEveryFrameAndVariant) {
   const glintlab::test::TempDir dir_tmp("run");
   const fs::path dir = dir_tmp.path();
   std::ofstream(dir / "tiny.json") << kTiny;
-  RunOptions opt;
-  opt.report = false;  // the report has its own test (report.cpp)
-  opt.experiment = (dir / "tiny.json").string();
-  opt.out_dir = (dir / "out").string();
-  opt.cache_dir = (dir / "cache").string();
-  opt.validation = true;
+  RunOptions opt = run_options(dir, "tiny.json");
   std::ostringstream log;
   // Exit code 0 also means the validation layer reported nothing.
   ASSERT_EQ(run_experiment(opt, log), 0) << log.str();
@@ -192,12 +198,7 @@ TEST(Runner, StaticCameraGivesIdenticalFramesAndNoFlicker) {
                       {"target", {0, 0, 0}}, {"fov", 40}};
   j["output"] = {{"exr", true}, {"png", false}, {"every", 1}};
   std::ofstream(dir / "static.json") << j.dump();
-  RunOptions opt;
-  opt.report = false;  // the report has its own test (report.cpp)
-  opt.experiment = (dir / "static.json").string();
-  opt.out_dir = (dir / "out").string();
-  opt.cache_dir = (dir / "cache").string();
-  opt.validation = true;
+  RunOptions opt = run_options(dir, "static.json");
   std::ostringstream log;
   ASSERT_EQ(run_experiment(opt, log), 0) << log.str();
   for (const char* d : {"reference", "no-aa", "ssaa"}) {
@@ -223,11 +224,7 @@ TEST(Runner, EnvironmentMapMustBeARegularFile) {
     nlohmann::json e = nlohmann::json::parse(kTiny);
     e["scene"]["sky"] = {{"hdri", hdri}};
     std::ofstream(dir / "hdri.json") << e.dump();
-    RunOptions opt;
-    opt.report = false;
-    opt.experiment = (dir / "hdri.json").string();
-    opt.out_dir = (dir / "out").string();
-    opt.cache_dir = (dir / "cache").string();
+    RunOptions opt = run_options(dir, "hdri.json", false);
     std::ostringstream log;
     EXPECT_EQ(run_experiment(opt, log), 2) << hdri << " accepted";
     EXPECT_NE(log.str().find("not a regular file"), std::string::npos) << log.str();
@@ -275,12 +272,7 @@ TEST(DensitySweep, RowsAreTheVariantAgainstTheRunsOwnTruth) {
   j["density_sweep"] = {{"z", {{"parameter", "log_density"}, {"values", {5, 6, 7}}}}};
   j["output"] = {{"exr", false}, {"png", false}};
   std::ofstream(dir / "sweep.json") << j.dump();
-  RunOptions opt;
-  opt.report = false;
-  opt.experiment = (dir / "sweep.json").string();
-  opt.out_dir = (dir / "out").string();
-  opt.cache_dir = (dir / "cache").string();
-  opt.validation = true;
+  RunOptions opt = run_options(dir, "sweep.json");
   std::ostringstream log;
   ASSERT_EQ(run_experiment(opt, log), 0) << log.str();
   const auto summary = nlohmann::json::parse(std::ifstream(dir / "out" / "summary.json"));
@@ -314,11 +306,7 @@ TEST(Runner, AFloorTargetTheRunCannotMeasureIsBadInput) {
   nlohmann::json j = nlohmann::json::parse(kTiny);
   j["reference"] = {{"grid", 2}, {"floor", {{"temporal_error_mc", 0.5}}}, {"max_grid", 4}};
   std::ofstream(dir / "f.json") << j.dump();
-  RunOptions opt;
-  opt.report = false;
-  opt.experiment = (dir / "f.json").string();
-  opt.out_dir = (dir / "out").string();
-  opt.cache_dir = (dir / "cache").string();
+  RunOptions opt = run_options(dir, "f.json", false);
   opt.max_frames = 1;
   std::ostringstream log;
   EXPECT_EQ(run_experiment(opt, log), 2) << log.str();
