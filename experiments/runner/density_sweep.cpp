@@ -218,16 +218,17 @@ int run_density_sweep(const RunOptions& opt, const nlohmann::json& source, const
     if (status != kExitOk) return status;
     std::vector<std::string> still;
     for (const auto& [name, xb] : at) {
-      nlohmann::json row = row_of(rows.at(name + ".matched"), parameter[name], xb.first);
+      const double x = xb.first;  // a copy: C++17 lambdas may not capture a structured binding (clang)
+      nlohmann::json row = row_of(rows.at(name + ".matched"), parameter[name], x);
       if (!method[name]->glints.empty()) row["glints"] = method[name]->glints;
       row["rounds"] = round;
       row["how"] = xb.second;
       matched[name] = row;
       const double lr = ln_ratio(row);
       const bool seen = std::any_of(points[name].begin(), points[name].end(),  // a swept value: no new point
-                                    [&](const SweepPoint& p) { return p.value == xb.first; });
-      if (!seen) points[name].push_back({xb.first, lr});
-      log << "density sweep: " << name << " at " << parameter[name] << " " << xb.first << ": glint density ratio "
+                                    [&](const SweepPoint& p) { return p.value == x; });
+      if (!seen) points[name].push_back({x, lr});
+      log << "density sweep: " << name << " at " << parameter[name] << " " << x << ": glint density ratio "
           << row["glint_density_ratio"] << "\n";
       if (!(std::fabs(lr) <= kMatchedBound) && !seen) still.push_back(name);
     }
