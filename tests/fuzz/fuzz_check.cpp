@@ -11,13 +11,17 @@
 // "name=x" with x a whole finite decimal >= 0 and no name twice; both files are JSON objects whose
 // variant names are unique; no metric mean of either is a string or a negative ΔE00; every gated
 // metric of the baseline (the defaults and those given) has a number for its mean where it has a
-// mean; and the last line counts the checks.
+// mean; the baseline's floors (references[].floor) are numbers >= 0 of metrics that have a floor, of
+// uniquely named truths, no larger than the largest mean of the metric measured against that truth
+// (a floor widens what the gate allows); and the last line counts the checks.
 
 #include "experiments/cli/check.h"
+#include "metrics/metric_registry.h"
 #include "tests/fuzz/fuzz_common.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -59,6 +63,27 @@ std::string accepted_bad_input(const std::string& summary, const std::string& ba
         if (mean.is_string()) return "a mean that is a string: " + metric;
         if (metric == "deltaE2000" && mean.is_number() && mean.get<double>() < 0) return "a negative deltaE2000";
         if (text == &baseline && gated.count(metric) && !mean.is_number()) return "a gated baseline mean not a number";
+      }
+    }
+  }
+  const nlohmann::json base = nlohmann::json::parse(baseline, nullptr, false, true);
+  if (base.contains("references") && base["references"].is_array()) {
+    std::set<std::string> truths;
+    for (const auto& r : base["references"]) {
+      if (!r.is_object() || !r.contains("name") || !r["name"].is_string()) return "a truth without a name";
+      if (!truths.insert(r["name"].get<std::string>()).second) return "two truths of one name";
+      if (!r.contains("floor")) continue;
+      if (!r["floor"].is_object()) return "a floor that is not an object";
+      for (const auto& [metric, f] : r["floor"].items()) {
+        if (!glintlab::metrics::has_noise_floor(metric)) return "a floor of a metric without one: " + metric;
+        if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0)
+          return "a floor that is not a number >= 0: " + metric;
+        double largest = -1;
+        for (const auto& v : base["variants"])
+          if (v.is_object() && v.value("reference", nlohmann::json()) == r["name"] && v["metrics"].contains(metric) &&
+              v["metrics"][metric].is_object() && v["metrics"][metric].value("mean", nlohmann::json()).is_number())
+            largest = std::max(largest, v["metrics"][metric]["mean"].get<double>());
+        if (largest >= 0 && f.get<double>() > largest) return "a floor above every mean measured against it: " + metric;
       }
     }
   }

@@ -13,7 +13,8 @@
 # Environment:
 #   GLINTLAB_FUZZ_BUILD_DIR   build folder (default <repo>/build-fuzz); corpora, logs and
 #                             crash inputs go to <build>/fuzz/{corpus,logs,artifacts}/<harness>/
-#   GLINTLAB_FUZZ_HARNESSES   which harnesses (default "experiment compare check journal options merge")
+#   GLINTLAB_FUZZ_HARNESSES   which harnesses (default "experiment compare check journal options merge
+#                             glint_model")
 #   GLINTLAB_FUZZ_TIMEOUT     seconds one input may take before it is a finding (default 10)
 #   GLINTLAB_FUZZ_JOBS        build parallelism (default: all cores)
 #   GLINTLAB_FUZZ_IGNORE, GLINTLAB_FUZZ_STRICT, GLINTLAB_FUZZ_ORACLES, GLINTLAB_FUZZ_MAX_SIDE,
@@ -29,7 +30,7 @@ if ! [[ "$TOTAL" =~ ^[0-9]+$ ]] || [ "$TOTAL" -lt 1 ]; then
 fi
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 BUILD="${GLINTLAB_FUZZ_BUILD_DIR:-$ROOT/build-fuzz}"
-read -r -a HARNESSES <<<"${GLINTLAB_FUZZ_HARNESSES:-experiment compare check journal options merge}"
+read -r -a HARNESSES <<<"${GLINTLAB_FUZZ_HARNESSES:-experiment compare check journal options merge glint_model}"
 TIMEOUT="${GLINTLAB_FUZZ_TIMEOUT:-10}"
 W="$BUILD/fuzz"
 
@@ -69,6 +70,7 @@ seed_corpus check "$ROOT"/results/baselines/*.json
 seed_corpus journal "$ROOT"/tests/fuzz/corpus/journal/*
 seed_corpus options "$ROOT"/tests/fuzz/corpus/options/*
 seed_corpus merge "$ROOT"/tests/fuzz/corpus/merge/*
+seed_corpus glint_model "$ROOT"/shaders/glint/models/*.glsl "$ROOT"/tests/data/glint_models/*.glsl
 
 # ---- sanitizer settings: stop at the first report; leaks count
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=1:abort_on_error=1:symbolize=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"
