@@ -707,14 +707,11 @@ class Report:
         rows = []
         for name, m in (self.summary.get("matched_density") or {}).items():
             default = next((v for v in self.variants if v["name"] == name), None)
-            ref = self.metric_stat(default, "glint_density_ref") if default else None
-            test = self.metric_stat(default, "glint_density_test") if default else None
             rows.append({"name": name, "parameter": m.get("parameter"), "value": m.get("value"),
                          "reason": m.get("reason"), "rounds": m.get("rounds"), "how": m.get("how"),
                          "nearest_value": m.get("nearest_value"), "nearest_ratio": m.get("nearest_ratio"),
                          "matched": [m.get(k) for k in SWEEP_METRICS] + [m.get("gpu_ms")],
-                         "default": [test / ref if finite(test) and finite(ref) and ref > 0 else None] +
-                                    [self.metric_stat(default, k) if default else None for k in SWEEP_METRICS[1:]] +
+                         "default": [self.metric_stat(default, k) if default else None for k in SWEEP_METRICS] +
                                     [stat(default.get("gpu_ms")) if default else None]})
         return {"figs": figs, "rows": rows, "columns": [label_of(k) for k in SWEEP_METRICS] + ["GPU ms/frame"]}
 

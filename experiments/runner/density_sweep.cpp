@@ -149,11 +149,10 @@ int run_density_sweep(const RunOptions& opt, const nlohmann::json& source, const
   nlohmann::json sweep = nlohmann::json::object(), matched = nlohmann::json::object();
   std::map<std::string, std::vector<SweepPoint>> points;
   std::map<std::string, const DensitySweepSpec::Method*> method;  // the swept variants this run has
-  std::map<std::string, std::string> parameter;                     // (--variants may leave some out)
+                                                                   // (--variants may leave some out)
   for (const auto& m : spec.density_sweep.methods) {
     if (std::none_of(spec.variants.begin(), spec.variants.end(), [&](const VariantSpec& v) { return v.name == m.variant; }))
       continue;
-    parameter[m.variant] = m.parameter;
     method[m.variant] = &m;
     nlohmann::json variants = nlohmann::json::array();
     std::vector<std::string> names;
@@ -174,7 +173,7 @@ int run_density_sweep(const RunOptions& opt, const nlohmann::json& source, const
     }
   }
   std::vector<std::string> open;  // not yet matched
-  for (const auto& [name, p] : parameter) open.push_back(name);
+  for (const auto& [name, m] : method) open.push_back(name);
   for (int round = 1; round <= kMatchRounds && !open.empty(); ++round) {
     nlohmann::json variants = nlohmann::json::array();
     std::map<std::string, std::pair<double, std::string>> at;  // the value and how it was chosen
@@ -194,12 +193,12 @@ int run_density_sweep(const RunOptions& opt, const nlohmann::json& source, const
         }
       }
       if (!std::isfinite(x) || !problem.empty()) {
-        std::string why = "no value of " + parameter[name] + " swept reaches glint density ratio 1 or leads to it";
+        std::string why = "no value of " + method[name]->parameter + " swept reaches glint density ratio 1 or leads to it";
         if (best)
           why += " (the nearest, " + value_text(std::exp(best->ln_ratio)) + ", at " + value_text(best->value) + ")";
         if (!problem.empty()) why += "; the line through the end values leads outside the range: " + problem;
         log << "warning: density sweep: " << name << ": not matched: " << why << "\n";
-        matched[name] = {{"parameter", parameter[name]}, {"value", nullptr}, {"rounds", round - 1},
+        matched[name] = {{"parameter", method[name]->parameter}, {"value", nullptr}, {"rounds", round - 1},
                          {"how", "not matched"}, {"reason", why}};
         if (best) {
           matched[name]["nearest_value"] = best->value;
@@ -219,7 +218,7 @@ int run_density_sweep(const RunOptions& opt, const nlohmann::json& source, const
     std::vector<std::string> still;
     for (const auto& [name, xb] : at) {
       const double x = xb.first;  // a copy: C++17 lambdas may not capture a structured binding (clang)
-      nlohmann::json row = row_of(rows.at(name + ".matched"), parameter[name], x);
+      nlohmann::json row = row_of(rows.at(name + ".matched"), method[name]->parameter, x);
       if (!method[name]->glints.empty()) row["glints"] = method[name]->glints;
       row["rounds"] = round;
       row["how"] = xb.second;
@@ -228,7 +227,7 @@ int run_density_sweep(const RunOptions& opt, const nlohmann::json& source, const
       const bool seen = std::any_of(points[name].begin(), points[name].end(),  // a swept value: no new point
                                     [&](const SweepPoint& p) { return p.value == x; });
       if (!seen) points[name].push_back({x, lr});
-      log << "density sweep: " << name << " at " << parameter[name] << " " << x << ": glint density ratio "
+      log << "density sweep: " << name << " at " << method[name]->parameter << " " << x << ": glint density ratio "
           << row["glint_density_ratio"] << "\n";
       if (!(std::fabs(lr) <= kMatchedBound) && !seen) still.push_back(name);
     }
