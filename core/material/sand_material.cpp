@@ -32,7 +32,37 @@ const Range kSSS{"SSS", 0, 1}, kRs{"R_s", 0, 1}, kT{"T", 0, 1}, kRt{"R_t", 0, 1}
 const Range kLogDensity{"log_density", -3, 14}, kAlphaG{"alpha_g", 1e-3, 1},
     kRelRough{"relative_roughness", 1e-3, 1}, kIntensity{"intensity", 0, 1e6}, kLightCone{"light_cone", 0, 0.5};
 
+// "specular_aa" (sand/specular_aa.glsl): sigma^2 up to 4 (a pixel filter 2 px wide), kappa up to 1
+const Range kSpecSigma2{"specular_aa.sigma2", 1e-6, 4}, kSpecKappa{"specular_aa.kappa", 1e-6, 1};
+
 }  // namespace
+
+const std::vector<std::string>& SandSpecularAA::names() {
+  static const std::vector<std::string> n{"none", "kaplanyan2016", "tokuyoshi2019", "tokuyoshi2021"};
+  return n;
+}
+
+SandSpecularAA SandSpecularAA::published(const std::string& method) {
+  SandSpecularAA a;
+  a.method = method;
+  // Kaplanyan et al. 2016: the bounding rectangle's half extent r = b / 2 (b = |dp/dx| + |dp/dy|),
+  // at most 0.3, adds 2 r^2 = 2 (1/4) b^2 to alpha^2: sigma^2 = 1/4, kappa = 2 (0.3)^2.
+  // Tokuyoshi & Kaplanyan 2019: sigma^2 = 0.25 (the screen-space variance), kappa = 0.18.
+  // Tokuyoshi & Kaplanyan 2021: sigma^2 = 1 / (2 pi) (a Gaussian pixel filter of unit peak), kappa = 0.18.
+  if (method == "kaplanyan2016" || method == "tokuyoshi2019") {
+    a.sigma2 = 0.25;
+    a.kappa = 0.18;
+  } else if (method == "tokuyoshi2021") {
+    a.sigma2 = 1.0 / (2.0 * kPi);
+    a.kappa = 0.18;
+  }
+  return a;
+}
+
+int SandSpecularAA::define() const {
+  const auto& n = names();
+  return int(std::find(n.begin(), n.end(), method) - n.begin());
+}
 
 std::vector<std::string> SandParams::glint_vector_keys() { return {kAlphaG.name, kRelRough.name}; }
 
@@ -161,6 +191,14 @@ void SandParams::validate() const {
       throw ConfigError("sand: glints." + name + " = " + num(value) + " is not allowed; allowed true or false");
     check_glint(Range{gp->name.c_str(), gp->lo, gp->hi}, value);
   }
+  check_enum("specular_aa", specular_aa.method, SandSpecularAA::names());
+  if (specular_aa.on()) {
+    check(kSpecSigma2, specular_aa.sigma2);
+    check(kSpecKappa, specular_aa.kappa);
+    if (!decl)
+      throw ConfigError("sand: specular_aa = " + specular_aa.method + " needs a glint model with a roughness to widen; glint model " +
+                        glint_model + " has none (allowed: a model other than kajs and none, or specular_aa none)");
+  }
   if (appendix_compat & ~uint32_t(kSandCompatAll))
     throw ConfigError("sand: appendix_compat = " + std::to_string(appendix_compat) + " has unknown bits; allowed 0.." +
                       std::to_string(unsigned(kSandCompatAll)));
@@ -273,6 +311,19 @@ SandParams SandParams::from_json(JsonReader& r) {
     }
   }
   p.energy_consistent = r.get_bool("energy_consistent", p.energy_consistent);
+  if (r.has("specular_aa")) {
+    if (r.raw("specular_aa").is_object()) {
+      JsonReader a = r.child("specular_aa");
+      p.specular_aa = SandSpecularAA::published(a.get_enum("method", SandSpecularAA::names()));
+      if (p.specular_aa.on()) {
+        p.specular_aa.sigma2 = a.get_number("sigma2", p.specular_aa.sigma2, kSpecSigma2.lo, kSpecSigma2.hi);
+        p.specular_aa.kappa = a.get_number("kappa", p.specular_aa.kappa, kSpecKappa.lo, kSpecKappa.hi);
+      }
+      a.finish();
+    } else {
+      p.specular_aa = SandSpecularAA::published(r.get_enum("specular_aa", SandSpecularAA::names()));
+    }
+  }
   if (auto g = r.optional_child("glints")) {
     auto& G = p.glints;
     auto getg = [&](const Range& range, double def) { return g->get_number(range.name, def, range.lo, range.hi); };
@@ -351,6 +402,7 @@ SandParams SandParams::reference() const {
   // The truth has no far field and no transition (SAND_FAR=0): the sigmoid's
   // parameters do not change it, so variants that differ only there share it.
   const SandParams defaults;
+  p.specular_aa = defaults.specular_aa;  // the footprint integral itself: nothing to approximate
   p.sigmoid_a = defaults.sigmoid_a;
   p.sigmoid_b = defaults.sigmoid_b;
   return p;
@@ -388,6 +440,8 @@ SandParamsGPU SandParams::pack() const {
     g.glint_alpha[2 + a] = float(glints.relative_roughness[a]);
   }
   g.glint_log_density = float(glints.log_density);
+  g.specular_aa_sigma2 = float(specular_aa.sigma2);
+  g.specular_aa_kappa = float(specular_aa.kappa);
   if (const GlintModelDecl* d = glint_decl())
     for (size_t i = 0; i < d->parameters.size(); ++i) g.glint_parameters[i] = float(glint_parameter(d->parameters[i].name));
   return g;
@@ -424,8 +478,10 @@ std::vector<std::string> shader_defines(const SandParams& p, const SandFeatures&
       "SAND_TRANSMISSION=" + std::to_string(int(transmission)), "SAND_GLINTS=" + std::to_string(int(glints)),
       "SAND_GLINT_MODEL=" + std::to_string(p.pack().glint_model), "SAND_CLOSE=" + std::to_string(int(close)),
       "SAND_FAR=" + std::to_string(int(far)), "SAND_DEBUG=" + std::to_string(debug)};
-  if (const GlintModelDecl* d = p.glint_decl(); d && glints)
+  if (const GlintModelDecl* d = p.glint_decl(); d && glints) {
     for (auto& def : glint_model_defines(*d)) out.push_back(std::move(def));
+    if (p.specular_aa.on()) out.push_back("SAND_SPECULAR_AA=" + std::to_string(p.specular_aa.define()));
+  }
   return out;
 }
 

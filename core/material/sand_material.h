@@ -32,7 +32,7 @@ struct SandParamsGPU {
   float sig_b, glint_intensity, glint_light_cone, glint_pad0;
   uint32_t appendix_compat, fresnel_half_vector, glint_model, energy_consistent;
   float glint_alpha[4];  // xy = alpha_g (u, v), zw = relative roughness (u, v)
-  float glint_log_density, glint_pad1, glint_pad2, glint_pad3;
+  float glint_log_density, specular_aa_sigma2, specular_aa_kappa, glint_pad3;
   float glint_parameters[kMaxGlintParameters];  // the glint_D model's parameters, declaration order
 };
 static_assert(sizeof(SandParamsGPU) == 288, "SandParamsGPU must match the std140 GLSL struct");
@@ -95,6 +95,25 @@ struct SandGlintParams {
   std::map<std::string, double> model;
 };
 
+// Geometric specular anti-aliasing, JSON "specular_aa": the roughness of the lobes the material
+// shades widened by how the surface turns within the pixel (shaders/sand/specular_aa.glsl has each
+// method's equations). It widens the glint_D models' alpha_g (their smooth limit, the far field, and
+// the spread of the microdetail normals alpha_m); alpha_l, one microdetail's lobe, is kept (none of
+// the papers widens it). Where the macro normal does not turn within the pixel nothing is changed.
+// The truth never has it (reference()): it is what the supersampled footprint integral has exactly.
+struct SandSpecularAA {
+  std::string method = "none";  // one of names()
+  double sigma2 = 0.0;          // sigma^2: the variance of the pixel filter (screen units)
+  double kappa = 0.0;           // kappa: the largest alpha^2 the kernel adds
+
+  // "none", "kaplanyan2016", "tokuyoshi2019", "tokuyoshi2021"
+  static const std::vector<std::string>& names();
+  // The published parameters of a method ("none": 0, 0).
+  static SandSpecularAA published(const std::string& method);
+  bool on() const { return method != "none"; }
+  int define() const;  // SAND_SPECULAR_AA's value: the method's index in names()
+};
+
 struct SandParams {
   using RGB = std::array<double, 3>;
   // Grain palette C[8] (eq. 4.4); Appendix A default: all white.
@@ -128,6 +147,9 @@ struct SandParams {
   // radiometrically consistent (shaders/sand/DIFFERENCES.md "Units").
   bool energy_consistent = false;
   SandGlintParams glints;  // "glints": the glint_D models
+  // "specular_aa": a method's name (its published parameters) or {"method": ..., "sigma2": ...,
+  // "kappa": ...}; needs a glint_D model (kajs and none have no roughness to widen).
+  SandSpecularAA specular_aa;
 
   // The glint_D model's declaration; nullptr for "kajs" and "none".
   const GlintModelDecl* glint_decl() const;
@@ -178,7 +200,8 @@ constexpr double kSandPruneWeight = 1e-4;
 // I_glints = 0 or the close field pruned, or another model with
 // glints.intensity = 0; SAND_GLINT_MODEL=<glint_model_gpu_id> (only that
 // model is compiled; a glint_D model's file and parameters by
-// glint_model_defines); SAND_FAR=0 when sig(max_distance) < 1e-4; SAND_CLOSE=0
+// glint_model_defines); SAND_SPECULAR_AA=<SandSpecularAA::define()> with SAND_SPECULAR_AA_SIGMA2 and
+// SAND_SPECULAR_AA_KAPPA where a method is on and glints are compiled; SAND_FAR=0 when sig(max_distance) < 1e-4; SAND_CLOSE=0
 // when 1 - sig(min_distance) < 1e-4; SAND_DEBUG=<value>. A debug output
 // keeps both fields (no close/far pruning).
 std::vector<std::string> shader_defines(const SandParams& params, const SandFeatures& needs);

@@ -23,7 +23,7 @@ SandParams sand_params = SandParams(
     SAND_WORD_F(48), SAND_WORD_F(49), SAND_WORD_F(50), SAND_WORD_F(51),      // sig_b, glint_intensity, _light_cone, pad
     sand_words[52], sand_words[53], sand_words[54], sand_words[55],          // appendix_compat, fresnel_half_vector, glint_model, energy_consistent
     SAND_WORD_V(56),                                                          // glint_alpha
-    SAND_WORD_F(60), SAND_WORD_F(61), SAND_WORD_F(62), SAND_WORD_F(63),      // glint_log_density, pads
+    SAND_WORD_F(60), SAND_WORD_F(61), SAND_WORD_F(62), SAND_WORD_F(63),      // glint_log_density, specular_aa_sigma2, _kappa, pad
     vec4[2](SAND_WORD_V(64), SAND_WORD_V(68)));                               // glint_parameters
 #else
 layout(set = 0, binding = 1, std140) uniform MaterialUBO { SandParams sand_params; };
@@ -32,6 +32,12 @@ layout(set = 0, binding = 2) uniform sampler2D env_map;
 #define GLINT_TABLE_BINDING 3  // the glint model's data table, when it declares one (glint/query.glsl)
 #include "common/environment.glsl"
 #include "sand/sand.glsl"
+#ifndef SAND_SPECULAR_AA
+#define SAND_SPECULAR_AA 0
+#endif
+#if SAND_SPECULAR_AA
+#include "sand/specular_aa.glsl"
+#endif
 
 #ifndef COLOR_HALF
 #define COLOR_HALF 0  // the surface pass sets it when the colour target is RGBA16F
@@ -72,7 +78,25 @@ void main() {
   SandLight l = SandLight(frame_sun_dir.xyz, frame_sun_L.rgb, env_irradiance(n), frame_sun_dir.w);
   // Not clamped: every frame is scanned for NaN/Inf/negative values, and a
   // clamp here would hide a defect of the material.
+#if SAND_SPECULAR_AA
+  // The derivatives of specular AA (sand/specular_aa.glsl), taken here in uniform control flow and,
+  // like the uv footprint, for the sample's stratum of the pixel.
+  vec3 h = safe_normalize(l.wi + wo, n);
+  vec3 h_t = vec3(dot(h, s.t), dot(h, s.b), dot(h, n));
+#if SAND_SPECULAR_AA == SPECULAR_AA_KAPLANYAN2016
+  vec2 h_domain = h_t.xy / max(h_t.z, 1e-4);  // the slope domain (h below the surface: the lobe sees 0)
+#else
+  vec2 h_domain = h_t.xy;  // the projected space (tokuyoshi2019 reads the normal only)
+#endif
+  SpecularAAInput aa = SpecularAAInput(dFdx(n) * footprint, dFdy(n) * footprint, dFdx(h_domain) * footprint,
+                                       dFdy(h_domain) * footprint);
+  SandParams shaded = sand_params;
+  shaded.glint_alpha =
+      specular_aa_glint_alpha(shaded.glint_alpha, aa, shaded.specular_aa_sigma2, shaded.specular_aa_kappa);
+  SandTerms terms = sand_terms(shaded, s, l);
+#else
   SandTerms terms = sand_terms(sand_params, s, l);
+#endif
   vec3 L = sand_output(terms);
   float w = sample_jitter_weight.z;
   out_color = vec4(L * w, w);

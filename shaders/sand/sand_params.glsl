@@ -47,7 +47,9 @@ struct SandParams {
   uint energy_consistent;    // 0: the thesis' factors; 1: radiometrically consistent (DIFFERENCES.md)
   vec4 glint_alpha;          // xy: global Beckmann roughness alpha_g (u, v); zw: relative roughness alpha_l / alpha_g (u, v)
   float glint_log_density;       // log10 of microdetails per unit uv area (sec. 4.5)
-  float glint_pad1, glint_pad2, glint_pad3;
+  float specular_aa_sigma2;      // sigma^2 and kappa of the specular_aa method (sand/specular_aa.glsl)
+  float specular_aa_kappa;
+  float glint_pad3;
   vec4 glint_parameters[2];      // the glint_D model's own parameters in declaration order (glint/query.glsl)
 };
 

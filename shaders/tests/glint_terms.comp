@@ -52,7 +52,7 @@ void main() {
   p.SSS = 0.0; p.R_s = 0.0; p.T = 0.0; p.R_t = 0.0; p.sigma_g = 1.0; p.P = 0.0; p.noise_scale = 1.0;
   p.scattering = 0.0; p.absorption = 0.0; p.sigma_on = 0.0; p.sig_a = 1.0; p.sig_b = 0.0;
   p.appendix_compat = 0u; p.fresnel_half_vector = 0u; p.energy_consistent = 0u;
-  p.glint_pad0 = 0.0; p.glint_pad1 = 0.0; p.glint_pad2 = 0.0; p.glint_pad3 = 0.0;
+  p.glint_pad0 = 0.0; p.specular_aa_sigma2 = 0.0; p.specular_aa_kappa = 0.0; p.glint_pad3 = 0.0;
   p.glint_parameters[0] = vec4(0.0); p.glint_parameters[1] = vec4(0.0);
   twin_half_vector_blend = inputs[i + 36u];
   p.glint_alpha = vec4(in2(i + 24u), in2(i + 26u));

@@ -58,7 +58,7 @@ void main() {
   p.sigma_on = inputs[i + 29u];
   p.sig_a = inputs[i + 30u];
   p.sig_b = inputs[i + 31u];
-  p.glint_pad0 = 0.0; p.glint_pad1 = 0.0; p.glint_pad2 = 0.0; p.glint_pad3 = 0.0;
+  p.glint_pad0 = 0.0; p.specular_aa_sigma2 = 0.0; p.specular_aa_kappa = 0.0; p.glint_pad3 = 0.0;
   p.glint_parameters[0] = vec4(0.0); p.glint_parameters[1] = vec4(0.0);
   p.energy_consistent = uint(inputs[i + 64u]);
   p.glint_alpha = vec4(in2(i + 65u), in2(i + 67u));
