@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "metrics/ciede2000.h"
 #include "metrics/delta_e_itp.h"
 #include "metrics/error_metrics.h"
 #include "metrics/parallel.h"
@@ -37,6 +38,14 @@ void luminance_planes(const Image& xyz, NoFillVector<float>& y, NoFillVector<dou
     for (std::size_t i = o; i < o + w; ++i) pq[i] = y[i] = xyz.data[i * std::size_t(xyz.channels) + 1];
     perceptual_luminance_n(pq.data() + o, pq.data() + o, w);
   });
+}
+// CIE 1976 lightness L* = 116 f(Y) − 16 (CIE 15:2004 eq. 8.1, lab_f of ciede2000.h: linear below
+// (6/29)^3, so no cube root of a negative) of a display-referred XYZ image, white Y = 1.
+NoFillVector<float> lightness_plane(const Image& xyz) {
+  NoFillVector<float> l(xyz.pixel_count());
+  for (std::size_t i = 0; i < l.size(); ++i)
+    l[i] = float(116.0 * lab_f(double(xyz.data[i * std::size_t(xyz.channels) + 1])) - 16.0);
+  return l;
 }
 }  // namespace
 
@@ -235,17 +244,45 @@ std::vector<Reprojected> reproject(const Image& motion, const std::vector<float>
   return out;
 }
 
-FlickerReference flicker_reference(const Image& ref_xyz) {
+FlickerReference flicker_reference(const Image& ref_xyz, const Image* display_xyz) {
   FlickerReference r;
   r.width = ref_xyz.width;
   r.height = ref_xyz.height;
   luminance_planes(ref_xyz, r.y, r.pq);
   r.adaptation = adaptation_luminance(ref_xyz);
+  if (display_xyz) {
+    require_same_size(ref_xyz, *display_xyz, "flicker_reference (displayed)");
+    r.display_lightness = lightness_plane(*display_xyz);
+  }
   return r;
 }
 
+namespace {
+// temporal_score of one frame (metrics/flicker.h) from the displayed lightness of frames t and t-1;
+// sums of c^4 per row in parallel, then over rows in order (the same for any thread count).
+double temporal_score_frame(int w, int h, const float* lt, const float* prev_lt, const float* lr,
+                            const float* prev_lr) {
+  std::vector<double> rows(static_cast<size_t>(h));
+  parallel_for(h, [&](long y) {
+    const std::size_t o = std::size_t(y) * std::size_t(w);
+    double sum = 0.0;
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = o + std::size_t(x);
+      const double c = std::abs((double(lt[i]) - prev_lt[i]) - (double(lr[i]) - prev_lr[i]));
+      const double c2 = c * c;
+      sum += c2 * c2;
+    }
+    rows[size_t(y)] = sum;
+  });
+  double sum = 0.0;
+  for (double r : rows) sum += r;
+  const std::size_t n = std::size_t(w) * std::size_t(h);
+  return n ? std::pow(sum / double(n), 1.0 / kTemporalScorePower) : 0.0;
+}
+}  // namespace
+
 std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::shared_ptr<const FlickerReference> shared,
-                                                 const Image& motion) {
+                                                 const Image& motion, const Image* test_display_xyz) {
   if (!shared) throw std::invalid_argument("FlickerTracker::push: no reference");
   const FlickerReference& ref = *shared;
   if (test_xyz.width != ref.width || test_xyz.height != ref.height)
@@ -268,6 +305,11 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
   for (std::size_t i = 0; i < n; ++i) dist[i] = motion.data[i * motion.channels + 2];
   std::optional<FlickerFrame> result;
   NoFillVector<float> own_adaptation = adaptation_luminance(test_xyz);
+  NoFillVector<float> display_lt;
+  if (test_display_xyz) {
+    require_same_size(test_xyz, *test_display_xyz, "FlickerTracker::push (displayed)");
+    display_lt = lightness_plane(*test_display_xyz);
+  }
   if (pushed_ > 0) {
     const FlickerReference& prev_ref = *prev_ref_;
     // Sums per row in parallel, then over rows in order: the same result for any thread count.
@@ -339,6 +381,11 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
     f.flicker_excess_fixed = s_xf * inv_n;
     f.temporal_error_mc = s_emc * inv_v;
     f.flicker_ratio = flicker_ratio(f.mean_contrast_test, f.mean_contrast_ref);
+    const bool displayed = !display_lt.empty() && prev_display_lt_.size() == n &&
+                           ref.display_lightness.size() == n && prev_ref.display_lightness.size() == n;
+    f.temporal_score = displayed ? temporal_score_frame(w, h, display_lt.data(), prev_display_lt_.data(),
+                                                        ref.display_lightness.data(), prev_ref.display_lightness.data())
+                                 : std::numeric_limits<double>::quiet_NaN();
     frames_.push_back(f);
     result = f;
   }
@@ -348,6 +395,7 @@ std::optional<FlickerFrame> FlickerTracker::push(const Image& test_xyz, std::sha
   prev_pqt_ = std::move(pqt);
   prev_dist_ = std::move(dist);
   prev_ya_test_ = std::move(own_adaptation);
+  prev_display_lt_ = std::move(display_lt);
   prev_ref_ = std::move(shared);
   ++pushed_;
   return result;
@@ -361,6 +409,7 @@ void FlickerTracker::reset() {
   prev_ref_.reset();
   prev_dist_.clear();
   prev_ya_test_.clear();
+  prev_display_lt_.clear();
 }
 
 }  // namespace glintlab::metrics

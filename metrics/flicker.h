@@ -64,6 +64,19 @@
 //                       luminance (the same σ and ε), needing no reference: what a CI job gates on
 //                       when it has only last night's value of its renderer's output
 //
+// What a viewer's eye sees change, as ColorVideoVDP (a fixed-gaze model) ranks it
+// (metrics/README.md, "Does it rank what a viewer sees?", has the evidence): on the *displayed* image
+// (display-referred through an OCIO view, white Y = 1; where the view clips a glint, it compares as
+// clipped), in CIE 1976 lightness L* = 116 f(Y) − 16 (a perceptually uniform scale: a change of 1 is about
+// as visible in the shadows as in the highlights), at a fixed pixel and at full resolution,
+//   c_t(p) = |(L*T_t(p) − L*T_{t−1}(p)) − (L*R_t(p) − L*R_{t−1}(p))|   (the error's change)
+//   temporal_score_t = (mean_p c_t(p)^4)^(1/4)   (Minkowski pooling: a few strong changes count more
+//                                                 than many faint ones)
+// over every pixel, in L* units: 0 = the error does not change (a truth against itself, or a constant
+// error); lower = steadier. It counts what a steady gaze sees change, flicker and lag alike (a history
+// that lags behind moving texture changes where the truth does not); flicker_excess and temporal_lag
+// tell the two apart along the motion.
+//
 // Motion input: RGBA per pixel as the renderer's surface pass writes it
 // (shaders/common/motion.glsl): xy = v_t in pixels (p_t - p_{t-1}), z = the
 // surface's distance to the eye in frame t (0 = no surface), w = its distance
@@ -84,6 +97,7 @@ constexpr double kFlickerReferenceNits = 100.0;  // cd/m^2 for Y = 1 (PQ encodin
 constexpr double kAdaptationSigmaPx = 2.0;
 constexpr double kContrastEpsilon = 0.01;
 constexpr double kDisocclusionTolerance = 0.05;  // interpolated inverse distance vs the point's
+constexpr double kTemporalScorePower = 4.0;      // temporal_score's Minkowski exponent
 
 // PQ(max(Y, 0) * reference_nits): the perceptual luminance of temporal_error.
 double perceptual_luminance(double Y, double reference_nits = kFlickerReferenceNits);
@@ -106,6 +120,7 @@ struct FlickerFrame {
   double flicker_excess = 0.0;       // mean max(0, |ΔT̃| − |ΔR̃|) / (Y_a + ε), along the motion
   double temporal_lag = 0.0;         // mean max(0, |ΔR̃| − |ΔT̃|) / (Y_a + ε), along the motion
   double flicker_excess_fixed = 0.0; // the excess at a fixed pixel (fixed gaze), every pixel
+  double temporal_score = 0.0;       // the displayed error's change, Minkowski-pooled (NaN: no display planes)
   std::size_t valid_px = 0;          // pixels in the along-the-motion means
   std::size_t disoccluded_px = 0;    // masked: hidden or off-screen in frame t-1
   std::size_t background_px = 0;     // masked: no surface
@@ -142,8 +157,11 @@ struct FlickerReference {
   int width = 0, height = 0;
   NoFillVector<float> y, adaptation;
   NoFillVector<double> pq;
+  NoFillVector<float> display_lightness;  // temporal_score's: L* of the reference as displayed (may be empty)
 };
-FlickerReference flicker_reference(const Image& ref_xyz);
+// display_xyz: the reference as displayed (display-referred XYZ, white Y = 1), for temporal_score; without
+// it the frames have no temporal_score (NaN).
+FlickerReference flicker_reference(const Image& ref_xyz, const Image* display_xyz = nullptr);
 
 // Feed (test, reference, motion) frames in order; every frame after the first
 // yields a FlickerFrame. Test and reference are CIE XYZ (Y = 1 diffuse white).
@@ -152,8 +170,9 @@ class FlickerTracker {
   // Throws std::invalid_argument when sizes differ, the motion image has fewer
   // than 4 channels, or the size changes between frames.
   // The tracker keeps the reference for the next frame: shared, not copied (a 1080p one is 33 MB).
+  // test_display_xyz: the test as displayed (temporal_score; with the reference's display planes).
   std::optional<FlickerFrame> push(const Image& test_xyz, std::shared_ptr<const FlickerReference> ref,
-                                   const Image& motion);
+                                   const Image& motion, const Image* test_display_xyz = nullptr);
   std::optional<FlickerFrame> push(const Image& test_xyz, const FlickerReference& ref, const Image& motion) {
     return push(test_xyz, std::make_shared<const FlickerReference>(ref), motion);
   }
@@ -169,7 +188,7 @@ class FlickerTracker {
  private:
   std::size_t pushed_ = 0;
   int width_ = 0, height_ = 0;
-  NoFillVector<float> prev_yt_, prev_dist_, prev_ya_test_;
+  NoFillVector<float> prev_yt_, prev_dist_, prev_ya_test_, prev_display_lt_;
   NoFillVector<double> prev_pqt_;
   std::shared_ptr<const FlickerReference> prev_ref_;
   std::vector<FlickerFrame> frames_;

@@ -35,6 +35,14 @@ const Image& FrameMetrics::xyz_of(const Image& img, Image& storage) const {
   return storage;
 }
 
+const Image* FrameMetrics::temporal_display(const Image& linear, const Image& metric, Image& storage) const {
+  if (options_.temporal_view.empty()) return nullptr;
+  if (options_.temporal_view == options_.display_view) return &metric;  // already displayed through it
+  auto [display, view] = parse_display_view(options_.temporal_view);
+  storage = cm_.display_referred_xyz(linear, space_, display, view);
+  return &storage;
+}
+
 FrameMetrics::Reference FrameMetrics::prepare(const Image& ref_linear, bool shared) const {
   return prepare(std::make_shared<const Image>(ref_linear), shared);
 }
@@ -45,7 +53,11 @@ FrameMetrics::Reference FrameMetrics::prepare(std::shared_ptr<const Image> ref_l
   r.metric_xyz = options_.display_view.empty()
                      ? r.xyz
                      : std::make_shared<const Image>(metric_xyz(cm_, *ref_linear, space_, options_));
-  r.flicker = std::make_shared<const FlickerReference>(flicker_reference(*r.xyz));
+  {
+    Image displayed;
+    const Image* shown = temporal_display(*ref_linear, *r.metric_xyz, displayed);
+    r.flicker = std::make_shared<const FlickerReference>(flicker_reference(*r.xyz, shown));
+  }
   // The reference side of the per-pixel metrics that have one, converted once for every variant.
   auto measured = [&](const char* m) { return std::find(per_pixel_.begin(), per_pixel_.end(), m) != per_pixel_.end(); };
   if (options_.flip_hdr && measured("flip")) r.flip.emplace(*r.metric_xyz, options_.flip_ppd);
@@ -112,7 +124,9 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
       v.emplace_back(name + "_max", defect ? nan : max);
     });
   timed("flicker", [&] {
-    std::optional<FlickerFrame> f = flicker.push(test_xyz, ref.flicker, motion);
+    Image displayed;
+    const Image* shown = temporal_display(test_linear, test_metric, displayed);
+    std::optional<FlickerFrame> f = flicker.push(test_xyz, ref.flicker, motion, shown);
     auto put = [&](const char* n, double x) { v.emplace_back(n, f && !defect ? x : nan); };
     put("flicker_ratio", f ? f->flicker_ratio : nan);
     put("temporal_error", f ? f->temporal_error : nan);
@@ -122,6 +136,7 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
     put("flicker_excess", f ? f->flicker_excess : nan);
     put("temporal_lag", f ? f->temporal_lag : nan);
     put("flicker_excess_fixed", f ? f->flicker_excess_fixed : nan);
+    put("temporal_score", f ? f->temporal_score : nan);
     v.emplace_back("flicker_valid_px", f ? double(f->valid_px) : nan);
     v.emplace_back("flicker_disoccluded_px", f ? double(f->disoccluded_px) : nan);
   });

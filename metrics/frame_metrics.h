@@ -5,7 +5,7 @@
 //
 //   <m>, <m>_max           per-pixel metric m of the registry: mean and max over pixels
 //   flicker_ratio, temporal_error, temporal_error_mc, frame_diff_ratio, flicker_contrast,
-//   flicker_excess, temporal_lag, flicker_excess_fixed,
+//   flicker_excess, temporal_lag, flicker_excess_fixed, temporal_score,
 //   flicker_valid_px, flicker_disoccluded_px     (metrics/flicker.h; from the second frame on)
 //   glint_density_test, glint_density_ref, glint_hist_emd_oct   (metrics/glint_stats.h; when
 //                                                  MetricOptions::glints, the group "glints")
@@ -76,6 +76,9 @@ class FrameMetrics {
   // CIE XYZ D65 of an image in the working space: the image itself when the working space is XYZ (as
   // for `measure`, which converts every file once when it reads it), else `storage`, converted.
   const Image& xyz_of(const Image& img, Image& storage) const;
+  // The image as temporal_score sees it (display-referred through options_.temporal_view): `metric`
+  // when that is already the view's, else `storage`, converted; nullptr without a temporal view.
+  const Image* temporal_display(const Image& linear, const Image& metric, Image& storage) const;
   const ColorManager& cm_;
   std::string space_;
   std::vector<std::string> per_pixel_;

@@ -84,7 +84,7 @@ const std::vector<MetricInfo>& metrics_rows() {
     {"temporal_error_mc", "flicker", "PQ code value (the same along the motion)",
      "temporal error (motion-compensated)", "min", true, true, 0.02, kNonNegative,
      "The temporal error measured along the motion instead of at a fixed pixel: the change that does not match "
-     "the truth's. This report ranks temporal stability by it. Lower is better."},
+     "the truth's, as an eye that follows the surface sees it. Lower is better."},
     {"frame_diff_ratio", "flicker", "ratio (mean |ΔT| / mean |ΔR| at a fixed pixel, PQ)", "frame-difference ratio",
      "one", true, false, kNotGated, kNonNegative,
      "Mean |ΔT| / mean |ΔR| between consecutive frames at a fixed pixel (PQ): like the flicker ratio but without "
@@ -95,19 +95,27 @@ const std::vector<MetricInfo>& metrics_rows() {
      "reference (what `measure` gives without one). Lower is steadier."},
     {"flicker_excess", "flicker",
      "Weber contrast (mean max(0, |ΔT| − |ΔR|) along the motion, both low-passed at σ = 2 px)", "flicker excess",
-     "min", true, true, 0.05, kNonNegative,
+     "min", true, true, kNotGated, kNonNegative,
      "The change along the motion the test has beyond the truth's, per pixel and one-sided, both frames "
      "low-passed at the eye's resolution (σ = 2 px) first, as Weber contrast: 0 = no added flicker. “Twinkles too "
      "much”. Lower is better."},
     {"temporal_lag", "flicker",
      "Weber contrast (mean max(0, |ΔR| − |ΔT|) along the motion, both low-passed at σ = 2 px)", "temporal lag",
-     "min", true, true, 0.05, kNonNegative,
+     "min", true, true, kNotGated, kNonNegative,
      "The truth's change along the motion that the test lacks (one-sided, low-passed as flicker excess): history "
      "lag and ghosting. “Smooth but wrong”. Lower is better."},
     {"flicker_excess_fixed", "flicker", "Weber contrast (the excess at a fixed pixel: fixed gaze)",
      "flicker excess (fixed gaze)", "min", true, true, kNotGated, kNonNegative,
      "Flicker excess at a fixed pixel instead of along the motion: what an eye that does not follow the surface "
      "sees. Screen-fixed artefacts have excess along the motion only. Lower is better."},
+    {"temporal_score", "flicker",
+     "ΔL* (CIE lightness; Minkowski p = 4 of the displayed error's change at a fixed pixel)", "temporal score", "min",
+     true, true, 0.05, kNonNegative,
+     "How much the error changes from frame to frame where the eye rests, on the image as displayed (through "
+     "the OCIO view of the previews), in CIE lightness L*: |ΔL*(test) − ΔL*(truth)| per pixel, pooled with "
+     "exponent 4 so that a few strong changes count more than many faint ones. Flicker and lag both raise it; "
+     "it ranks the variants as ColorVideoVDP's temporal channel does (metrics/README.md). This report ranks "
+     "temporal stability by it. Lower is steadier."},
     {"flicker_valid_px", "flicker", "pixels", "pixels followed", "none", true, false, kNotGated, kNonNegative,
      "Pixels whose motion was followed to the previous frame (not off-screen, not disoccluded)."},
     {"flicker_disoccluded_px", "flicker", "pixels", "disoccluded pixels", "none", true, false, kNotGated,

@@ -95,6 +95,9 @@ struct MetricOptions {
   // "DISPLAY/VIEW" (e.g. "sRGB/Standard") = display-referred, as that OCIO view shows the images
   // (see metric_xyz in metrics/color/measurement_space.h).
   std::string display_view;
+  // The "DISPLAY/VIEW" temporal_score is measured through (what a viewer sees; metrics/flicker.h): the run
+  // sets it to the view of its previews (or display_view when that is set); "" = no temporal_score.
+  std::string temporal_view = "sRGB/ACES 1.0 SDR-video";
   // The statistics groups measured besides flicker (set from the metrics list by select_metrics).
   bool glints = true;
   bool pooled = true;

@@ -5,7 +5,7 @@
 // than its tolerance.
 //
 // "Worse" per metric: larger for errors (deltaE2000, flip, temporal_error,
-// temporal_error_mc, pooled_error, deltaEITP, relative, glint_hist_emd_oct, and
+// temporal_error_mc, temporal_score, pooled_error, deltaEITP, relative, glint_hist_emd_oct, and
 // flicker_contrast, the flicker of a test alone that `measure` gives without a reference);
 // farther from 1 for flicker_ratio and frame_diff_ratio, measured as
 // |log(ratio)|; smaller for psnr; any increase of nonfinite_pixels or

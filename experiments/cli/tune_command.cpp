@@ -24,9 +24,8 @@ void add_tune_command(CLI::App& app, int& exit_code) {
   // Split here, not by CLI11 (which drops empty items): "deltaE2000,,flip" is refused, not read as two.
   auto objectives = std::make_shared<std::vector<std::string>>();
   c->add_option("--objectives", *objectives,
-                "metrics to minimise, comma-separated (flicker_ratio and glint_density_ratio as |ln ratio|; gpu_ms; "
-                "deltaE2000, flip, temporal_error_mc, ...)")
-      ->required();
+                "metrics to minimise, comma-separated: a metric of the summary (flicker_ratio and glint_density_ratio "
+                "as |ln ratio|) or gpu_ms (default: temporal_score,deltaE2000,gpu_ms)");
   c->add_option("--trials", o->trials, "the study's total of finished trials (every worker stops there)")
       ->required()
       ->check(CLI::Range(1, 100000));
@@ -42,6 +41,7 @@ void add_tune_command(CLI::App& app, int& exit_code) {
   c->add_option("--device", o->device, "Vulkan device: index or part of its name (default: lavapipe)");
   c->callback([o, objectives, &exit_code] {
     o->objectives.clear();
+    if (objectives->empty()) *objectives = {"temporal_score,deltaE2000,gpu_ms"};
     for (const std::string& list : *objectives)
       for (size_t at = 0;;) {
         const size_t comma = list.find(',', at);

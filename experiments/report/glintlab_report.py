@@ -81,14 +81,17 @@ class BadInput(Exception):
 # to 1, "ref" closest to the reference's value, "none" not ranked), description and unit -- is read from
 # summary.json "metric_info", which the run writes from the metric table (metrics/metric_registry.cpp);
 # this file keeps no list of its own. Which metrics the report's table and panels show is its choice:
-TABLE_METRICS = ["deltaE2000", "flip", "temporal_error_mc", "flicker_excess", "temporal_lag", "flicker_ratio",
-                 "glint_density_ratio", "flicker_excess_fixed", "temporal_error", "flicker_contrast", "deltaEITP", "psnr",
+TABLE_METRICS = ["deltaE2000", "flip", "temporal_score", "flicker_excess", "temporal_lag", "flicker_ratio",
+                 "glint_density_ratio", "temporal_error_mc", "flicker_excess_fixed", "temporal_error", "flicker_contrast",
+                 "deltaEITP", "psnr",
                  "pooled_error", "glint_density_test", "glint_density_ref", "glint_hist_emd_oct", "nonfinite_pixels",
                  "negative_pixels"]
-# Temporal stability is ranked by temporal_error_mc (the change that does not match the truth); the
-# flicker ratio is a diagnostic (it ranks lag as flicker and magnitude over agreement).
+# Temporal stability is ranked by temporal_score (the displayed error's change where the eye rests, which
+# ranks the variants as ColorVideoVDP's temporal channel does: metrics/README.md); flicker excess and lag
+# are its diagnostics ("twinkles too much", "smooth but wrong"), the flicker ratio another (it ranks lag
+# as flicker and magnitude over agreement).
 # The glint density ratio as |ln ratio|: whether a variant keeps the truth's glints, at its cost.
-PARETO_METRICS = ["deltaE2000", "flip", "temporal_error_mc", "glint_density_ratio"]
+PARETO_METRICS = ["deltaE2000", "flip", "temporal_score", "glint_density_ratio"]
 RATIO_METRICS = ("flicker_ratio", "glint_density_ratio")  # plotted and ranked as |ln ratio|
 CURVE_METRICS = ["flicker_ratio", "deltaE2000"]
 AA_MARKERS = {"none": "o", "ssaa": "s", "taa": "^"}
@@ -331,8 +334,8 @@ def pareto_front(points, floors=None):
 def floor_items(reference):
     """[(label, value)] of a truth's noise floor (summary.json references[].floor) for the facts list."""
     floor = reference.get("floor") or {}
-    return [(label_of(m), floor[m]) for m in ("deltaE2000", "flip", "temporal_error_mc", "flicker_excess",
-                                                "temporal_lag") if isinstance(floor.get(m), (int, float))]
+    return [(label_of(m), floor[m]) for m in ("deltaE2000", "flip", "temporal_score", "flicker_excess",
+                                                "temporal_lag", "temporal_error_mc") if isinstance(floor.get(m), (int, float))]
 
 
 def floor_of(summary, variant_name, metric):
@@ -669,7 +672,7 @@ class Report:
         return out
 
     def temporal_detail(self, name):
-        """The flicker excess and lag of a variant, shown beside its temporal error."""
+        """The flicker excess and lag of a variant, shown beside its temporal score."""
         v = self.variant(name)
         return self.metric_stat(v, "flicker_excess"), self.metric_stat(v, "temporal_lag")
 
@@ -689,7 +692,7 @@ class Report:
             pts, front = fronts[metric]
             by = {p[2]: p for p in pts}
             best = min(pts, key=lambda p: p[1])
-            detail = self.temporal_detail(best[2]) if metric == "temporal_error_mc" else None
+            detail = self.temporal_detail(best[2]) if metric == "temporal_score" else None
             items.append({"metric": metric, "best": best, "ratio": metric in RATIO_METRICS, "detail": detail,
                           "front": [by[p[2]] for p in front]})
             tied = self.within_floor(pts, best, metric)

@@ -568,7 +568,7 @@ int write_measure_outputs(const Setup& s, const MeasureOptions& o, const RunPlan
     };
     log << "  " << std::left << std::setw(20) << v["name"].get<std::string>() << std::right
         << " deltaE2000 " << std::setw(9) << mean_of("deltaE2000") << "  flicker_ratio " << std::setw(9)
-        << mean_of("flicker_ratio") << "  temporal_error_mc " << std::setw(10) << mean_of("temporal_error_mc")
+        << mean_of("flicker_ratio") << "  temporal_score " << std::setw(10) << mean_of("temporal_score")
         << "  flicker_contrast " << std::setw(9) << mean_of("flicker_contrast") << "\n";
   }
   for (const auto& r : summary["references"]) {
@@ -577,7 +577,7 @@ int write_measure_outputs(const Setup& s, const MeasureOptions& o, const RunPlan
       continue;
     }
     log << "  floor (the truth's noise)";
-    for (const char* n : {"deltaE2000", "temporal_error_mc", "flicker_excess", "temporal_lag"})
+    for (const char* n : {"deltaE2000", "temporal_score", "flicker_excess", "temporal_lag"})
       if (r["floor"].contains(n) && r["floor"][n].is_number())
         log << "  " << n << " " << std::setprecision(4) << r["floor"][n].get<double>();
     log << "\n";
@@ -604,7 +604,7 @@ int measure_sequences(const MeasureOptions& o, std::ostream& log) {
     return code;
   const Plan& p = s.p;
   const ExperimentSpec& spec = s.spec;
-  const metrics::FrameMetrics frame_metrics(cm, spec.working_space, spec.metrics, spec.metric_options);
+  const metrics::FrameMetrics frame_metrics(cm, spec.working_space, spec.metrics, spec.measured_metric_options());
   // The loop's working set in 2 MiB pages: at most about 280 bytes a pixel and 70 more for each test
   // (peak resident memory at 1920x1080: 570 MB with one test, whose reference's L*a*b* is not kept,
   // 796 MB with two), at most what one call takes.

@@ -149,6 +149,7 @@ void SummaryWriter::finish() {
   j["per_pixel_metrics_referred"] = spec.metric_options.display_view.empty()
                                         ? std::string("scene")
                                         : "display (" + spec.metric_options.display_view + ")";
+  j["temporal_score_view"] = spec.measured_metric_options().temporal_view;  // what temporal_score saw
   j["timing_warmup_frames_excluded"] = info_.warmup_frames;
   for (auto it = info_.extra.begin(); it != info_.extra.end(); ++it) j[it.key()] = it.value();
   j["statistics"] = "per variant over frames: mean, p95 (nearest rank) and max; a NaN frame makes all three null "

@@ -54,14 +54,14 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
     return o.str();
   };
   log << "  " << std::left << std::setw(20) << "variant" << std::right << std::setw(12) << "gpu ms/frame"
-      << std::setw(12) << "deltaE2000" << std::setw(15) << "flicker_ratio" << std::setw(19) << "temporal_error_mc"
+      << std::setw(12) << "deltaE2000" << std::setw(15) << "flicker_ratio" << std::setw(16) << "temporal_score"
       << std::setw(16) << "flicker_excess" << std::setw(14) << "temporal_lag" << "\n";
   for (const auto& v : summary["variants"]) {
     const auto& m = v["metrics"];
     auto metric = [&](const char* n) { return m.contains(n) ? mean(m[n]) : std::string("-"); };
     log << "  " << std::left << std::setw(20) << v["name"].get<std::string>() << std::right << std::setw(12)
         << mean(v["gpu_ms"]) << std::setw(12) << metric("deltaE2000") << std::setw(15) << metric("flicker_ratio")
-        << std::setw(19) << metric("temporal_error_mc") << std::setw(16) << metric("flicker_excess") << std::setw(14)
+        << std::setw(16) << metric("temporal_score") << std::setw(16) << metric("flicker_excess") << std::setw(14)
         << metric("temporal_lag") << "\n";
   }
   for (const auto& r : summary["references"]) {
@@ -389,7 +389,8 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
     RenderedFrames frames(spec, data);
     std::unique_ptr<metrics::FrameMetrics> frame_metrics;
     if (plan.measure)
-      frame_metrics = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics, spec.metric_options);
+      frame_metrics = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics,
+                                                                     spec.measured_metric_options());
     FrameLoop loop(plan, rendered_sources(ctx, scene, plan, cm, cache, frames, frame_metrics.get(), log),
                    frame_metrics.get(), log);
     loop.run(work, {journal.get(), &images});

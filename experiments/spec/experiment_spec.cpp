@@ -381,6 +381,12 @@ void ExperimentSpec::read_common(JsonReader& r, ExperimentSpec& s) {
   }
 }
 
+metrics::MetricOptions ExperimentSpec::measured_metric_options() const {
+  metrics::MetricOptions o = metric_options;
+  o.temporal_view = o.display_view.empty() ? output.display + "/" + output.view : o.display_view;
+  return o;
+}
+
 ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s, const std::string& file) {
   s.frames_only.enabled = true;
   std::set<std::string> names;

@@ -153,6 +153,10 @@ struct ExperimentSpec {
   FramesOnlySpec frames_only;
   DensitySweepSpec density_sweep;
 
+  // metric_options as the run measures with them: temporal_score through the view the previews
+  // use (output display/view), or through metric_options.view when one is set.
+  metrics::MetricOptions measured_metric_options() const;
+
   static ExperimentSpec load(const std::string& file);
   static ExperimentSpec from_json(const nlohmann::json& j, const std::string& file);
 

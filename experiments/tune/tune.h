@@ -9,7 +9,9 @@
 //     (lo > 0), or "a,b,..." (choices, each JSON or a bare string). The variant with each end of the
 //     range (each choice) set at KEY must pass the experiment schema: the schema's message names the
 //     key and what it allows;
-//   - every objective is a metric of the summary or gpu_ms (objective_names());
+//   - every objective is a metric of the summary or gpu_ms (objective_names()); the command line
+//     defaults to temporal_score,deltaE2000,gpu_ms (temporal stability as a viewer ranks it, colour
+//     error, cost);
 //   - the study folder: DIR/study.json holds the definition; a folder holding another study (other
 //     experiment, base, space or objectives) is refused; the same definition is joined (several
 //     workers, on one machine or under a scheduler, share one study).

@@ -657,7 +657,7 @@ int bench(int argc, char** argv) {
         inputs(spec, data, w, h, {glm::vec2(-0.25f, -0.25f), glm::vec2(0.25f, -0.25f), glm::vec2(-0.25f, 0.25f),
                                   glm::vec2(0.25f, 0.25f)});
     const Image ref_linear = r.render(ref_in.uniforms, ref_in.samples).images.at("color");
-    metrics::FrameMetrics fm(cm, spec.working_space, spec.metrics, spec.metric_options);
+    metrics::FrameMetrics fm(cm, spec.working_space, spec.metrics, spec.measured_metric_options());
     const auto ref = fm.prepare(ref_linear);
     std::printf("\nHDR-FLIP exposures of the reference: %d, from %.3f to %.3f stops\n", ref.flip ? ref.flip->exposures().count : 0,
                 ref.flip ? ref.flip->exposures().start : 0.0, ref.flip ? ref.flip->exposures().stop : 0.0);

@@ -189,7 +189,7 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
   for (const std::string& s : {summary["device"].get<std::string>(), summary["glintlab_version"].get<std::string>(),
                                std::string("report-test"), std::string("64×36"), std::string("no-aa"),
                                std::string("ssaa-2x2"), std::string("taa"), std::string("Pareto"),
-                               std::string("temporal error along the motion"), std::string("flicker excess"),
+                               std::string("temporal score"), std::string("flicker excess"),
                                std::string("temporal lag"), std::string("ΔE00")})
     EXPECT_NE(report.find(s), std::string::npos) << "report.html does not mention " << s;
   // The glint density as a ratio to the truth's, in the table and as a Pareto panel, wherever the
@@ -210,7 +210,7 @@ TEST(Report, EveryImageAndPlotLoadsInHeadlessChromium) {
   EXPECT_NE(report.find("glint density ratio"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "figures" / "pareto_glint_density_ratio.svg"));
   // Plots also as SVG and PDF beside the report.
-  for (const char* name : {"pareto", "pareto_deltaE2000", "pareto_flip", "pareto_temporal_error_mc", "per_frame"}) {
+  for (const char* name : {"pareto", "pareto_deltaE2000", "pareto_flip", "pareto_temporal_score", "per_frame"}) {
     const fs::path svg = out / "figures" / (std::string(name) + ".svg");
     const fs::path pdf = out / "figures" / (std::string(name) + ".pdf");
     ASSERT_TRUE(fs::exists(svg)) << svg;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -330,4 +331,131 @@ TEST(Flicker, ScreenFixedArtefactsShowAlongTheMotionOnly) {
   EXPECT_LT(along / 9, 0.5 * random.excess);
   EXPECT_LT(at_pixel / 9, 0.001 * random.fixed);
   EXPECT_GT(random.fixed, 0.01);
+}
+
+// temporal_score (metrics/flicker.h): the displayed error's change in L* at a fixed pixel, Minkowski
+// p = 4. The test images stand for the displayed image here (display planes = the frames themselves).
+namespace {
+
+struct ScoreRun {
+  FlickerTracker tracker;
+  std::vector<double> scores;
+  void push(const Image& test, const Image& ref, const Image& motion) {
+    auto r = std::make_shared<const FlickerReference>(flicker_reference(ref, &ref));
+    if (auto f = tracker.push(test, r, motion, &test)) scores.push_back(f->temporal_score);
+  }
+  double mean() const {
+    double s = 0;
+    for (double x : scores) s += x;
+    return scores.empty() ? 0.0 : s / double(scores.size());
+  }
+};
+
+}  // namespace
+
+// The truth against itself scores 0, moving or not; so does an error that does not change (a fixed
+// pattern on a still picture): only what changes from frame to frame counts.
+TEST(TemporalScore, TruthAgainstItselfAndAConstantErrorScoreZero) {
+  const int w = 24, h = 16;
+  std::mt19937 rng(31);
+  const std::vector<float> pattern = glint_field((w + 64) * h, rng);
+  const std::vector<float> still = glint_field(w * h, rng), error = glint_field(w * h, rng);
+  std::vector<float> still_test(still.size());
+  for (std::size_t i = 0; i < still.size(); ++i) still_test[i] = still[i] + 0.5f * error[i];
+  ScoreRun self, constant;
+  for (int f = 0; f < 6; ++f) {
+    const Image moving = frame_y(w, h, shifted(pattern, w, h, f));
+    self.push(moving, moving, uniform_motion(w, h, 1.0f, 0.0f));
+    constant.push(frame_y(w, h, still_test), frame_y(w, h, still), uniform_motion(w, h, 0.0f, 0.0f));
+  }
+  ASSERT_EQ(self.scores.size(), 5u);
+  for (double s : self.scores) EXPECT_EQ(s, 0.0);
+  for (double s : constant.scores) EXPECT_EQ(s, 0.0);
+}
+
+// Noise re-drawn every frame over a still truth: the score grows with the noise, nearly in proportion
+// (L* is smooth, so a small change is about linear in it).
+TEST(TemporalScore, GrowsWithFlickerAmplitude) {
+  const int w = 32, h = 24, frames = 8;
+  std::mt19937 rng(17);
+  const std::vector<float> ref = glint_field(w * h, rng);
+  std::vector<std::vector<float>> noise;
+  std::normal_distribution<float> unit(0.0f, 1.0f);
+  for (int f = 0; f < frames; ++f) {
+    noise.emplace_back(ref.size());
+    for (float& v : noise.back()) v = unit(rng);
+  }
+  auto run = [&](float amplitude) {
+    ScoreRun s;
+    for (int f = 0; f < frames; ++f) {
+      std::vector<float> t = ref;
+      for (std::size_t i = 0; i < t.size(); ++i) t[i] = std::max(0.0f, t[i] + amplitude * (0.3f + 0.1f * noise[f][i]));
+      s.push(frame_y(w, h, t), frame_y(w, h, ref), uniform_motion(w, h, 0.0f, 0.0f));
+    }
+    return s.mean();
+  };
+  const double a = run(0.5f), b = run(1.0f);
+  std::printf("temporal_score of re-drawn noise: amplitude 0.5 %.4g, 1.0 %.4g\n", a, b);
+  EXPECT_GT(a, 1.0);  // L* units: clearly visible
+  EXPECT_GT(b / a, 1.5);
+  EXPECT_LT(b / a, 2.5);
+}
+
+// A history blend (TAA-like) of a truth that moves one pixel a frame lags behind it: a score above 0
+// that falls as the blend follows the current frame more closely (α 0.1 → 0.5 → 1 = no history).
+TEST(TemporalScore, LagFallsAsTheHistoryFollows) {
+  const int w = 32, h = 16, frames = 10;
+  std::mt19937 rng(23);
+  const std::vector<float> pattern = glint_field((w + 64) * h, rng);
+  auto run = [&](float alpha) {
+    ScoreRun s;
+    std::vector<float> history;
+    for (int f = 0; f < frames; ++f) {
+      const std::vector<float> ref = shifted(pattern, w, h, f);
+      if (history.empty()) history = ref;
+      // The history is reprojected along the motion (one pixel right), then blended.
+      std::vector<float> moved(history.size());
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) moved[size_t(y * w + x)] = history[size_t(y * w + std::max(0, x - 1))];
+      for (std::size_t i = 0; i < moved.size(); ++i) history[i] = (1 - alpha) * moved[i] + alpha * ref[i];
+      s.push(frame_y(w, h, history), frame_y(w, h, ref), uniform_motion(w, h, 1.0f, 0.0f));
+    }
+    return s.mean();
+  };
+  const double slow = run(0.1f), half = run(0.5f), none = run(1.0f);
+  std::printf("temporal_score of a lagging history: alpha 0.1 %.4g, 0.5 %.4g, 1 %.4g\n", slow, half, none);
+  EXPECT_EQ(none, 0.0);
+  EXPECT_GT(half, 0.0);
+  EXPECT_GT(slow, half);
+}
+
+// Minkowski pooling (p = 4): one pixel changing by ΔL* = c outweighs every pixel changing so that the
+// sum of their changes is about the same; the value is the hand-computed (Σc⁴/n)^(1/4) with
+// L* = 116 Y^(1/3) − 16.
+TEST(TemporalScore, FewStrongChangesOutweighManyFaintOnes) {
+  const int w = 16, h = 16, n = w * h;
+  const std::vector<float> ref(n, 0.5f);
+  const Image motion = uniform_motion(w, h, 0.0f, 0.0f);
+  std::vector<float> one = ref, all = ref;
+  const float step = 0.5f;
+  one[8 * w + 8] += step;
+  for (float& v : all) v += step / float(n);
+  ScoreRun strong, faint;
+  strong.push(frame_y(w, h, ref), frame_y(w, h, ref), motion);
+  strong.push(frame_y(w, h, one), frame_y(w, h, ref), motion);
+  faint.push(frame_y(w, h, ref), frame_y(w, h, ref), motion);
+  faint.push(frame_y(w, h, all), frame_y(w, h, ref), motion);
+  const double c = 116.0 * (std::cbrt(1.0) - std::cbrt(0.5));  // ΔL* of the one pixel: 23.93
+  EXPECT_NEAR(strong.scores.at(0), c / std::pow(double(n), 0.25), 1e-4 * c);
+  EXPECT_GT(strong.scores.at(0), 3.0 * faint.scores.at(0));
+}
+
+// Without the displayed planes (a tracker fed XYZ only) there is no temporal_score: NaN, never 0.
+TEST(TemporalScore, NaNWithoutTheDisplayedImage) {
+  const Image y = frame_y(4, 4, std::vector<float>(16, 0.4f));
+  FlickerTracker tr;
+  tr.push(y, y, uniform_motion(4, 4, 0, 0));
+  auto f = tr.push(y, y, uniform_motion(4, 4, 0, 0));
+  ASSERT_TRUE(f.has_value());
+  EXPECT_TRUE(std::isnan(f->temporal_score));
 }
