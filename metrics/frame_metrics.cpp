@@ -123,9 +123,10 @@ NamedValues FrameMetrics::measure(const Image& test_linear, const Reference& ref
       v.emplace_back(name, defect ? nan : mean);
       v.emplace_back(name + "_max", defect ? nan : max);
     });
+  Image displayed;
+  const Image* shown = nullptr;
+  timed("display", [&] { shown = temporal_display(test_linear, test_metric, displayed); });  // temporal_score's
   timed("flicker", [&] {
-    Image displayed;
-    const Image* shown = temporal_display(test_linear, test_metric, displayed);
     std::optional<FlickerFrame> f = flicker.push(test_xyz, ref.flicker, motion, shown);
     auto put = [&](const char* n, double x) { v.emplace_back(n, f && !defect ? x : nan); };
     put("flicker_ratio", f ? f->flicker_ratio : nan);

@@ -46,11 +46,13 @@ class Config {
   virtual std::vector<std::string> views(const std::string& display) const = 0;
   // The colour space display/view encodes into ("" when it names none).
   virtual std::string display_view_space(const std::string& display, const std::string& view) const = 0;
-  // The processor from one space to another (canonical names), or from a space through display/view.
-  // std::runtime_error with OpenColorIO's reason.
+  // The processor from one space to another (canonical names), or from a space through display/view:
+  // to the view's encoded values, or with decode_to, on to that space (one processor: OpenColorIO drops
+  // the encoding and its inverse). std::runtime_error with OpenColorIO's reason.
   virtual std::shared_ptr<const Processor> processor(const std::string& src, const std::string& dst) const = 0;
   virtual std::shared_ptr<const Processor> display_processor(const std::string& src, const std::string& display,
-                                                             const std::string& view) const = 0;
+                                                             const std::string& view,
+                                                             const std::string& decode_to = "") const = 0;
   // Every name canonical_name() knows (colour spaces, their aliases, roles) with its canonical name.
   virtual std::vector<std::pair<std::string, std::string>> names() const = 0;
   // The steps of processor(src, dst) after OpenColorIO's default optimisation, when they are all

@@ -4,11 +4,13 @@
 #include "experiments/cli/commands.h"
 #include "experiments/cli/exit_codes.h"
 #include "experiments/runner/measure.h"
+#include "metrics/color/measurement_space.h"
 
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <regex>
+#include <tuple>
 
 namespace glintlab {
 
@@ -66,6 +68,10 @@ void add_measure_command(CLI::App& app, int& exit_code) {
   c->add_option("--fps", o->fps, "frames per second, for time_s (default: 24)");
   c->add_option("--name", o->name, "the summary's experiment name, what check matches (default: measure)");
   c->add_option("--ocio-config", o->ocio_config, "OCIO config (default: $OCIO, else the shipped config)");
+  auto view = std::make_shared<std::string>();
+  c->add_option("--view", *view,
+                "DISPLAY/VIEW the previews and temporal_score show the frames through; sRGB/Standard for frames "
+                "that are already display-referred (8-bit PNG) (default: sRGB/ACES 1.0 SDR-video)");
   c->add_flag("--resume", o->resume, "continue the measurement in --out: do only what its journal lacks");
   c->add_flag("--no-report", *no_report, "do not write report.html");
   c->callback([=, &exit_code] {
@@ -77,6 +83,14 @@ void add_measure_command(CLI::App& app, int& exit_code) {
           if (!frames->empty() && !parse_range(*frames, &o->first, &o->last)) {
             std::cerr << "error: --frames: expected FIRST:LAST (frame numbers, e.g. 1:48), got \"" << *frames << "\"\n";
             return int(kExitBadInput);
+          }
+          if (!view->empty()) {
+            try {
+              std::tie(o->display, o->view) = metrics::parse_display_view(*view);
+            } catch (const std::invalid_argument& e) {
+              std::cerr << "error: --view: " << e.what() << "\n";
+              return int(kExitBadInput);
+            }
           }
           if (o->out_dir.empty()) o->out_dir = results_path("measure");
           return measure_sequences(*o, std::cerr);

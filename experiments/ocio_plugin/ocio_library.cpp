@@ -2,6 +2,7 @@
 // the first colour configuration is, so that a process that converts no colour never loads OpenColorIO.
 // Only glintlab_ocio_api is exported (the rest is hidden).
 #include "core/util/ocio_plugin.h"
+#include "metrics/parallel.h"
 
 #include <OpenColorIO/OpenColorIO.h>
 
@@ -21,29 +22,38 @@ class CpuProcessor final : public Processor {
   // RGBA goes through OCIO's own RGBA path, two and a half times faster than RGB with strides that skip
   // alpha (1080p lin_rec709 to CIE-XYZ-D65: 2.3–2.7 ms against 6.0–6.9), with the same colours to the
   // bit. That path may write alpha (a matrix's zero times an infinite colour is NaN), so it runs over
-  // bands of rows that stay in the cache, each band's alpha kept aside and put back.
+  // bands of rows that stay in the cache, each band's alpha kept aside and put back. The bands go to the
+  // metric threads (a CPU processor is thread-safe): each is the same call as on one thread, so the
+  // colours are the same to the bit; a display transform (ACES 1.0 SDR-video, about 190 ns a pixel) is
+  // what this saves most on.
   void apply_rgb(Image& img) const override {
     if (img.empty()) return;
     if (img.channels == 4) {
       constexpr int kBandRows = 16;
       const std::size_t w = std::size_t(img.width);
-      std::vector<float> alpha(kBandRows * w);
-      for (int y0 = 0; y0 < img.height; y0 += kBandRows) {
+      metrics::parallel_for((img.height + kBandRows - 1) / kBandRows, [&](long b) {
+        const int y0 = int(b) * kBandRows;
         const int rows = std::min(kBandRows, img.height - y0);
         float* band = img.px(0, y0);
         const std::size_t n = std::size_t(rows) * w;
+        std::vector<float> alpha(n);
         for (std::size_t i = 0; i < n; ++i) alpha[i] = band[4 * i + 3];
         OCIO::PackedImageDesc desc(band, img.width, rows, 4);
         cpu_->apply(desc);
         for (std::size_t i = 0; i < n; ++i) band[4 * i + 3] = alpha[i];
-      }
+      }, 1);
       return;
     }
     const std::ptrdiff_t c = sizeof(float);
     const std::ptrdiff_t x = c * img.channels;
     const std::ptrdiff_t y = x * img.width;
-    OCIO::PackedImageDesc desc(img.data.data(), img.width, img.height, 3, OCIO::BIT_DEPTH_F32, c, x, y);
-    cpu_->apply(desc);
+    constexpr int kBandRows = 16;  // bands of rows on the metric threads, as above
+    metrics::parallel_for((img.height + kBandRows - 1) / kBandRows, [&](long b) {
+      const int y0 = int(b) * kBandRows;
+      OCIO::PackedImageDesc desc(img.px(0, y0), img.width, std::min(kBandRows, img.height - y0), 3,
+                                 OCIO::BIT_DEPTH_F32, c, x, y);
+      cpu_->apply(desc);
+    }, 1);
   }
 
  private:
@@ -88,13 +98,21 @@ class OcioConfig final : public Config {
     }
   }
   std::shared_ptr<const Processor> display_processor(const std::string& src, const std::string& display,
-                                                     const std::string& view) const override {
+                                                     const std::string& view, const std::string& decode_to) const override {
     try {
       auto dvt = OCIO::DisplayViewTransform::Create();
       dvt->setSrc(src.c_str());
       dvt->setDisplay(display.c_str());
       dvt->setView(view.c_str());
-      return std::make_shared<CpuProcessor>(config_->getProcessor(dvt)->getDefaultCPUProcessor());
+      if (decode_to.empty())
+        return std::make_shared<CpuProcessor>(config_->getProcessor(dvt)->getDefaultCPUProcessor());
+      auto decode = OCIO::ColorSpaceTransform::Create();
+      decode->setSrc(display_view_space(display, view).c_str());
+      decode->setDst(decode_to.c_str());
+      auto group = OCIO::GroupTransform::Create();
+      group->appendTransform(dvt);
+      group->appendTransform(decode);
+      return std::make_shared<CpuProcessor>(config_->getProcessor(group)->getDefaultCPUProcessor());
     } catch (const OCIO::Exception& e) {
       throw std::runtime_error(e.what());
     }

@@ -297,6 +297,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("fps", &MeasureOptions::fps)
       .def_readwrite("name", &MeasureOptions::name)
       .def_readwrite("ocio_config", &MeasureOptions::ocio_config)
+      .def_readwrite("display", &MeasureOptions::display)  // with view: --view DISPLAY/VIEW
+      .def_readwrite("view", &MeasureOptions::view)
       .def_readwrite("report", &MeasureOptions::report);
 
   py::class_<RunOptions>(m, "RunOptions")

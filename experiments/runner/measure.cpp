@@ -391,6 +391,7 @@ void describe_run(const MeasureOptions& o, const std::vector<std::string>& metri
             {"frames", {p.numbers.front(), p.numbers.back()}},
             {"fps", o.fps},
             {"name", o.name}};
+  if (!o.display.empty()) source["view"] = o.display + "/" + o.view;  // what temporal_score saw
 
   spec.name = o.name;
   spec.file = o.file;
@@ -435,6 +436,14 @@ Setup resolve_measurement(const MeasureOptions& o, const metrics::ColorManager& 
   }
   if (!o.space.empty()) (void)cm.canonical_name(o.space);
   check_name(o.name, "--name");
+  if (!o.display.empty() || !o.view.empty()) {  // --view: the previews' and temporal_score's display
+    const auto ds = cm.displays();
+    if (std::find(ds.begin(), ds.end(), o.display) == ds.end())
+      throw ConfigError("--view: unknown display \"" + o.display + "\"; allowed: " + join(ds));
+    const auto vs = cm.views(o.display);
+    if (std::find(vs.begin(), vs.end(), o.view) == vs.end())
+      throw ConfigError("--view: display \"" + o.display + "\" has no view \"" + o.view + "\"; allowed: " + join(vs));
+  }
 
   open_colour_sequences(o, cm, log, s.p);
   resolve_motion(o, s);

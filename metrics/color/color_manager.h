@@ -77,6 +77,9 @@ class ColorManager {
   std::array<float, 8> chromaticities(const std::string& space) const;
 
  private:
+  // display() (decode_to "") and display_referred_xyz() (decode_to the display reference): one processor.
+  Image through_view(const Image& scene, const std::string& from_space, const std::string& display,
+                     const std::string& view, const std::string& decode_to) const;
   struct Impl;
   std::string config_path_;
   std::unique_ptr<Impl> impl_;

@@ -23,6 +23,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace fs = std::filesystem;
 using namespace glintlab;
@@ -204,8 +205,8 @@ TEST_F(Measure, OwnSequenceReproducesTheRunExactly) {
   int compared = 0;
   for (const char* v : kVariants)
     for (int k = 0; k < 8; ++k)
-      for (const char* m : {"flicker_ratio", "temporal_error_mc", "temporal_error", "deltaE2000", "flip",
-                            "flicker_contrast", "glint_density_test", "pooled_error", "flicker_valid_px"}) {
+      for (const char* m : {"flicker_ratio", "temporal_error_mc", "temporal_error", "temporal_score", "deltaE2000",
+                            "flip", "flicker_contrast", "glint_density_test", "pooled_error", "flicker_valid_px"}) {
         const double a = cell(run, v, k, m), b = cell(got, v, k, m);
         if (std::isnan(a)) {
           EXPECT_TRUE(std::isnan(b)) << v << " frame " << k << " " << m;
@@ -226,6 +227,34 @@ TEST_F(Measure, OwnSequenceReproducesTheRunExactly) {
   EXPECT_LT(me["mean"].get<double>(), 1.0) << me;
   for (const char* mirror : {"negated", "flip_y", "flip_x"})
     EXPECT_LT(me["mean"].get<double>(), 0.98 * me[mirror].get<double>()) << mirror << ": " << me;
+}
+
+// --view: temporal_score through another OCIO view (the display-referred frames' sRGB/Standard instead
+// of the default ACES tone curve) changes it and is recorded; every other metric stays as it was. A
+// display or view the config lacks is exit 2 naming --view and what is allowed, before any output.
+TEST_F(Measure, ViewChoosesTheDisplayOfTemporalScore) {
+  MeasureOptions standard = own_options("view-standard");
+  standard.display = "sRGB", standard.view = "Standard";
+  std::string log;
+  ASSERT_EQ(measure(standard, &log), 0) << log;
+  ASSERT_EQ(measure(own_options("view-default"), &log), 0) << log;
+  const nlohmann::json a = read_json(scratch("view-default") / "summary.json"),
+                       b = read_json(scratch("view-standard") / "summary.json");
+  EXPECT_EQ(a["temporal_score_view"], "sRGB/ACES 1.0 SDR-video");
+  EXPECT_EQ(b["temporal_score_view"], "sRGB/Standard");
+  for (const char* v : kVariants) {
+    EXPECT_NE(summary_mean(a, v, "temporal_score"), summary_mean(b, v, "temporal_score")) << v;
+    for (const char* m : {"deltaE2000", "flip", "temporal_error_mc", "flicker_excess"})
+      EXPECT_EQ(summary_mean(a, v, m), summary_mean(b, v, m)) << v << " " << m;
+  }
+  for (const auto& [display, view, says] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"sRGB", "Nope", "display \"sRGB\" has no view \"Nope\"; allowed: "}, {"Nope", "Standard", "unknown display"}}) {
+    MeasureOptions bad = own_options("view-bad");
+    bad.display = display, bad.view = view;
+    EXPECT_EQ(measure(bad, &log), 2) << log;
+    EXPECT_NE(log.find("--view: " + says), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(scratch("view-bad"))) << "nothing written before the check";
+  }
 }
 
 // --metrics names groups too: deltaE2000,flicker measures those two alone (no glint or pooled columns,

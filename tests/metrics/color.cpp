@@ -243,6 +243,32 @@ TEST(ColorConfig, RgbaConvertsLikeRgbAndKeepsAlpha) {
   EXPECT_NE(rgba.at(0, 0, 0), before.at(0, 0, 0));  // the colours did change
 }
 
+// A conversion runs over bands of 16 rows on the metric threads: the colours are those of converting the
+// image one row at a time (another grouping of the same per-pixel calls), to the bit, RGB and RGBA alike,
+// for a display transform (ACES 1.0 SDR-video, the view temporal_score sees through) and a plain
+// conversion.
+TEST(ColorConfig, BandsOnTheMetricThreadsEqualOneRowAtATime) {
+  for (int channels : {3, 4}) {
+    const int w = 37, h = 53;
+    Image img(w, h, channels);
+    for (std::size_t i = 0; i < img.data.size(); ++i) img.data[i] = float(4.0 * std::abs(std::sin(0.37 * double(i))));
+    const Image whole = cm().display_referred_xyz(img, "lin_rec709", "sRGB", "ACES 1.0 SDR-video");
+    Image plain = img;
+    cm().convert(plain, "lin_rec709", "ACEScg");
+    for (int y = 0; y < h; ++y) {
+      Image row(w, 1, channels);
+      std::copy(img.px(0, y), img.px(0, y) + std::size_t(w) * channels, row.data.begin());
+      Image row_plain = row;
+      const Image shown = cm().display_referred_xyz(row, "lin_rec709", "sRGB", "ACES 1.0 SDR-video");
+      cm().convert(row_plain, "lin_rec709", "ACEScg");
+      EXPECT_EQ(std::memcmp(shown.data.data(), whole.px(0, y), sizeof(float) * std::size_t(w) * channels), 0)
+          << channels << " channels, row " << y;
+      EXPECT_EQ(std::memcmp(row_plain.data.data(), plain.px(0, y), sizeof(float) * std::size_t(w) * channels), 0)
+          << channels << " channels, row " << y;
+    }
+  }
+}
+
 TEST(ColorConfig, UnknownSpaceErrorNamesItAndListsAllowed) {
   Image img(1, 1, 3);
   try {

@@ -302,6 +302,27 @@ def test_measure_paths_and_arrays_equal_cli(tmp_path):
     assert rows[3]["deltaE2000"] == crows[3]["deltaE2000"] and rows[3]["deltaE2000"] > 0
 
 
+def test_measure_view_equals_cli_and_is_checked(tmp_path):
+    """view= is --view: temporal_score through sRGB/Standard instead of the ACES view, recorded in the summary;
+    a malformed or unknown DISPLAY/VIEW is a ValueError before anything is measured."""
+    ref_seq = os.path.join(BLENDER, "ref", "frame_####.exr") + ":" + COMBINED
+    test_seq = os.path.join(BLENDER, "spp4", "frame_####.exr") + ":" + COMBINED
+    cs, _ = cli_measure(tmp_path / "cli", "--reference", ref_seq, "--test", "spp4=" + test_seq, "--metrics",
+                        "deltaE2000", "--view", "sRGB/Standard")
+    ps, _ = glintlab.measure(ref_seq, {"spp4": test_seq}, metrics="deltaE2000", view="sRGB/Standard",
+                             out=tmp_path / "py")
+    assert cs["temporal_score_view"] == ps["temporal_score_view"] == "sRGB/Standard"
+    assert summary_metrics(ps) == summary_metrics(cs)
+    ds, _ = glintlab.measure(ref_seq, {"spp4": test_seq}, metrics="deltaE2000")
+    assert ds["temporal_score_view"] == "sRGB/ACES 1.0 SDR-video"
+    score = lambda s: s["variants"][0]["metrics"]["temporal_score"]["mean"]
+    assert score(ds) > 0 and score(ps) > 0 and score(ds) != score(ps)
+    with pytest.raises(ValueError, match="view"):
+        glintlab.measure(ref_seq, {"spp4": test_seq}, view="sRGB")
+    with pytest.raises(ValueError, match="--view: display \"sRGB\" has no view \"Nope\""):
+        glintlab.measure(ref_seq, {"spp4": test_seq}, view="sRGB/Nope")
+
+
 def small_run_with_motion(tmp_path):
     """A 64x36, 4-frame glintlab render with its exact motion written (output.motion): RGBA EXRs of
     glintlab's four motion channels, the `pixels` convention with distances."""

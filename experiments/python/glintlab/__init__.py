@@ -252,14 +252,17 @@ def _read_records(path):
         return [{k: _number(v) for k, v in row.items()} for row in csv.DictReader(f)]
 
 
-def measure(reference, tests, motion=None, convention="pixels", depth=None, metrics=None, fps=None, out=None):
+def measure(reference, tests, motion=None, convention="pixels", depth=None, metrics=None, fps=None, out=None,
+            view=None):
     """`glintlab measure`: the run's metrics for image sequences. reference: a SEQ, a T x H x W [x C]
     array or None (then each test's own flicker); tests: one SEQ or array, a list of them, or a dict
     name -> SEQ or array; motion: a SEQ or T x H x W x 2|4 array of vectors in `convention`
     (arrays: the `pixels` convention's X, Y or R, G and the distances B, A); depth: a SEQ or
     T x H x W array; metrics: names and groups as --metrics (a list or a comma-separated string);
     fps: frames per second (default 24); out: the run folder (None: a temporary folder, removed
-    afterwards, and no report.html is written). Arrays are read in place, never written to files:
+    afterwards, and no report.html is written); view: "DISPLAY/VIEW" the previews and temporal_score
+    show the frames through, as --view (default "sRGB/ACES 1.0 SDR-video"; "sRGB/Standard" for frames
+    already display-referred). Arrays are read in place, never written to files:
     frame k of an array is the run's frame k (numbered from 0 where the reference, or the first test
     without one, is an array), and the journal knows an array by a hash of its values. Returns
     (summary as summary.json, per-frame records as frames.csv's rows: a list of dicts, numbers as
@@ -299,6 +302,11 @@ def measure(reference, tests, motion=None, convention="pixels", depth=None, metr
             o.metrics = metrics.split(",") if isinstance(metrics, str) else list(metrics)
         if fps is not None:
             o.fps = float(fps)
+        if view is not None:
+            parts = str(view).split("/")
+            if len(parts) != 2 or not all(parts):
+                raise ValueError(f"measure: view {view!r}: expected DISPLAY/VIEW, e.g. 'sRGB/Standard'")
+            o.display, o.view = parts
         _finish(*_core.measure(o, ref_array, test_arrays, motion_array, depth_array))
         with open(os.path.join(folder, "summary.json")) as f:
             summary = json.load(f)
