@@ -933,7 +933,7 @@ def plot_curves(rep, metrics):
     return rep.figs.save(fig, "per_frame", "Per-frame flicker ratio and ΔE00")
 
 
-SWEEP_METRICS = ("glint_density_ratio", "flicker_excess", "temporal_error_mc", "deltaE2000")
+SWEEP_METRICS = ("glint_density_ratio", "temporal_score", "flicker_excess", "temporal_error_mc", "deltaE2000")
 
 
 def plain_log_ticks(axis):

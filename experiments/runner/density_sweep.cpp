@@ -20,8 +20,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kMatchedBound = std::log(1.25);  // |ln ratio| a matched row may keep
 
 // The metrics a row holds (means over the frames), besides the ratio made of two of them.
-const char* const kRowMetrics[] = {"glint_density_test", "glint_density_ref", "flicker_excess", "temporal_lag",
-                                   "temporal_error_mc", "deltaE2000"};
+const char* const kRowMetrics[] = {"glint_density_test", "glint_density_ref", "temporal_score", "flicker_excess",
+                                   "temporal_lag", "temporal_error_mc", "deltaE2000"};
 
 double mean_of(const nlohmann::json& stats) {
   return stats.is_object() && stats.contains("mean") && stats["mean"].is_number() ? stats["mean"].get<double>() : kNaN;

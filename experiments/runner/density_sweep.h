@@ -17,7 +17,7 @@
 //   "matched_density": {VARIANT: {"parameter": NAME, "value": X, "rounds": K, "how": HOW, <row>}}
 //     HOW: "interpolated", "extrapolated", "nearest" (a swept value); or "not matched" with "value": null,
 //     "reason", "nearest_value" and "nearest_ratio" (the swept point nearest to ratio 1)
-// (and "glints": the sweep's fixed keys, where it has them) with <row> = glint_density_ratio, glint_density_test, glint_density_ref, flicker_excess, temporal_lag,
+// (and "glints": the sweep's fixed keys, where it has them) with <row> = glint_density_ratio, glint_density_test, glint_density_ref, temporal_score, flicker_excess, temporal_lag,
 // temporal_error_mc, deltaE2000 (means over the frames; null where not measured) and gpu_ms; the
 // truth's floors are its "references" entry's. Both sub-runs resume with --resume.
 #pragma once
