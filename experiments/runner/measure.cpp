@@ -15,6 +15,7 @@
 #include "experiments/runner/version.h"
 #include "experiments/runner/work_schedule.h"
 #include "experiments/sources/file_sources.h"
+#include "experiments/spec/scene_setup.h"
 #include "metrics/color/color_manager.h"
 #include "metrics/color/measurement_space.h"
 #include "metrics/frame_metrics.h"
@@ -437,12 +438,8 @@ Setup resolve_measurement(const MeasureOptions& o, const metrics::ColorManager& 
   if (!o.space.empty()) (void)cm.canonical_name(o.space);
   check_name(o.name, "--name");
   if (!o.display.empty() || !o.view.empty()) {  // --view: the previews' and temporal_score's display
-    const auto ds = cm.displays();
-    if (std::find(ds.begin(), ds.end(), o.display) == ds.end())
-      throw ConfigError("--view: unknown display \"" + o.display + "\"; allowed: " + join(ds));
-    const auto vs = cm.views(o.display);
-    if (std::find(vs.begin(), vs.end(), o.view) == vs.end())
-      throw ConfigError("--view: display \"" + o.display + "\" has no view \"" + o.view + "\"; allowed: " + join(vs));
+    const std::string problem = display_view_problem(cm, o.display, o.view);
+    if (!problem.empty()) throw ConfigError("--view: " + problem);
   }
 
   open_colour_sequences(o, cm, log, s.p);

@@ -102,6 +102,15 @@ core::SandFeatures distance_range(const ExperimentSpec& spec, const core::Mesh& 
   return f;
 }
 
+std::string display_view_problem(const metrics::ColorManager& cm, const std::string& display, const std::string& view) {
+  const auto ds = cm.displays();
+  if (std::find(ds.begin(), ds.end(), display) == ds.end()) return "unknown display \"" + display + "\"; allowed: " + join(ds);
+  const auto vs = cm.views(display);
+  if (std::find(vs.begin(), vs.end(), view) == vs.end())
+    return "display \"" + display + "\" has no view \"" + view + "\"; allowed: " + join(vs);
+  return "";
+}
+
 void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
   auto fail = [&](const std::string& key, const std::string& what) {
     throw ConfigError(spec.file + ": " + key + ": " + what + " (OCIO config " + cm.config_path() + ")");
@@ -110,12 +119,8 @@ void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& 
     if (!name.empty() && !cm.has_space(name)) fail(key, "unknown colour space \"" + name + "\"");
   };
   auto display_view = [&](const std::string& key, const std::string& display, const std::string& view) {
-    const auto ds = cm.displays();
-    if (std::find(ds.begin(), ds.end(), display) == ds.end())
-      fail(key, "unknown display \"" + display + "\"; allowed: " + join(ds));
-    const auto vs = cm.views(display);
-    if (std::find(vs.begin(), vs.end(), view) == vs.end())
-      fail(key, "display \"" + display + "\" has no view \"" + view + "\"; allowed: " + join(vs));
+    const std::string problem = display_view_problem(cm, display, view);
+    if (!problem.empty()) fail(key, problem);
   };
   display_view("output.display/view", spec.output.display, spec.output.view);
   if (!spec.metric_options.display_view.empty()) {

@@ -33,6 +33,10 @@ core::FrameUniforms frame_uniforms(const core::FrameCamera& cam, const core::Env
 // and the names the config has.
 void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& cm);
 
+// What is wrong with a display/view pair for the OCIO config ("unknown display ...; allowed: ...",
+// "display ... has no view ...; allowed: ..."), or "" when the config has both.
+std::string display_view_problem(const metrics::ColorManager& cm, const std::string& display, const std::string& view);
+
 // Everything about the scene that is built once per run, CPU side.
 struct SceneData {
   core::Mesh mesh;

@@ -4,7 +4,7 @@ experiments/perceptual/anchor.py from the three scenes of experiments/data/perce
 The table holds, per scene and variant, ColorVideoVDP's JODs (higher = closer to the truth) and glintlab's
 metrics (lower = better). Rank agreement is Spearman's ρ with the sign that makes +1 the same ranking;
 "pooled" ranks within each scene, then correlates all the scenes' ranks together (the scenes' JOD
-scales differ). The acceptance of issue 2/6: on the Kajs-truth rows, against the transient JOD, every
+scales differ). What temporal_score must meet: on the Kajs-truth rows, against the transient JOD, every
 held-out scene ρ ≥ 0.5, pooled ρ ≥ 0.7 with p < 0.01 (n ≥ 33), and every pair more than 0.2 JOD apart
 ordered as ColorVideoVDP orders it unless explained below. A re-rendered table (a change to the
 renderer or to the metric) must still pass."""
@@ -79,7 +79,7 @@ def test_pooled_agreement_beats_the_diagnostics(table):
     r, p, n = pooled(table, "temporal_score")
     print(f"pooled: temporal_score ρ {r:.3f} (p {p:.2g}, n {n})")
     assert n >= 33 and r >= 0.7 and p < 0.01
-    # The diagnostics it replaces as the ranking metric agree less (the issue's table).
+    # The temporal diagnostics agree less than the ranking metric does.
     for m in ("flicker_excess", "temporal_lag", "temporal_error_mc"):
         other = pooled(table, m)[0]
         print(f"pooled: {m} ρ {other:.3f}")
