@@ -1,18 +1,14 @@
-// The TAA resolve pass (a full-screen fragment pass, shaders/passes/taa.frag): blends this frame's
-// jittered colour with the reprojected history that the frame graph keeps
-// across frames. Reads "color" and "motion" (the surface pass with motion on);
-// keeps "taa.history" (rgb = resolved colour, a = the surface distance at the
-// pixel: with the disocclusion test, the nearest of its 3x3) and, with anti_flicker, "taa.luma" (the
-// last lumas of the pixel) and, with `accumulate` or `glint_layer`, "taa.extra" (rgb = the glint
-// layer's history, a = the frames accumulated at the pixel); with a glint-aware option it reads
-// "glint" (the surface pass's glint layer); writes "taa.color" (rgb resolved, a = coverage).
-// History restarts at camera cuts (the graph drops it), at off-screen
-// reprojections (per pixel), wherever it is not finite and, with the option
-// `disocclusion`, where the surface it holds is not the one seen now.
+// The TAA pass: a full-screen fragment pass (shaders/passes/taa.frag) that runs a temporal resolve
+// file (core/render/taa_resolve.h, shaders/taa/interface.glsl) once per pixel. Reads "color" and, where
+// the resolve uses them, "motion" (the surface pass with motion on) and "glint" (its glint layer);
+// keeps "taa.history" (rgb = TaaResult.history) and, where the resolve reads them back, "taa.state",
+// "taa.state2" and "taa.history2" across frames; writes "taa.color" (rgb resolved, a = coverage).
+// History is invalid (TaaPixel.history_valid false) in the first frame and after camera cuts and
+// resets (the graph drops it).
 #pragma once
 
 #include "core/render/pass.h"
-#include "core/render/taa_settings.h"
+#include "core/render/taa_resolve.h"
 #include "core/vk/pipeline.h"
 
 #include <string>
@@ -22,8 +18,9 @@ namespace glintlab::core {
 class TaaPass final : public Pass {
  public:
   // share_quads: where the image's width and height are even and the device has quad operations in
-  // fragment shaders, the pixels of each 2x2 quad share their neighbourhood fetches (TAA_QUAD_SHARE in
-  // passes/taa.frag; the same bits as fetching every texel, tested); false always fetches.
+  // fragment shaders, the host tells the resolve that 2x2 quads are whole (TAA_QUAD_SHARE; falcor then
+  // shares its neighbourhood fetches within quads: the same bits, tested); false never does.
+  // std::invalid_argument for a parameter value out of its declared range.
   TaaPass(const VkContext& ctx, TaaSettings settings, bool share_quads = true);
 
   std::string name() const override { return "taa"; }
@@ -34,14 +31,19 @@ class TaaPass final : public Pass {
   const TaaSettings& settings() const { return s_; }
   // Whether the pipeline built for the current targets shares fetches within quads.
   bool shares_quads() const { return quad_share_; }
-  // The compile-time defines of the resolve shader for these settings.
-  static std::vector<std::string> defines(const TaaSettings& s, bool quad_share);
+  // Compiles the resolve as the pass would (no quad sharing): ShaderCompileError naming the file and line.
+  static void compile(const TaaSettings& s);
+  // What the resolve reads, for these settings.
+  const TaaUses& uses() const { return uses_; }
+  // The compile-time defines of passes/taa.frag for these settings.
+  static std::vector<std::string> defines(const TaaSettings& s, const TaaUses& uses, bool quad_share);
 
  private:
   void build_pipeline(bool quad_share);
 
   const VkContext& ctx_;
   TaaSettings s_;
+  TaaUses uses_;
   bool allow_quad_share_ = true;
   bool quad_share_ = false;
   std::vector<VkFormat> outputs_;

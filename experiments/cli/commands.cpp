@@ -16,7 +16,7 @@ constexpr CommandGroup kCommands[] = {
     {{"measure"}, &add_measure_command},              {{"list"}, &add_list_command},
     {{"check"}, &add_check_command},                  {{"report"}, &add_report_command},
     {{"stress"}, &add_stress_command},                {{"tune"}, &add_tune_command},
-    {{"glint-test"}, &add_glint_test_command},
+    {{"glint-test"}, &add_glint_test_command},        {{"taa-test"}, &add_taa_test_command},
 };
 
 }  // namespace

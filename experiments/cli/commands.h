@@ -16,6 +16,7 @@ void add_report_command(CLI::App& app, int& exit_code);    // report (experiment
 void add_stress_command(CLI::App& app, int& exit_code);    // stress (experiments/stress/)
 void add_tune_command(CLI::App& app, int& exit_code);      // tune (experiments/tune/)
 void add_glint_test_command(CLI::App& app, int& exit_code);  // glint-test (experiments/glint_test/)
+void add_taa_test_command(CLI::App& app, int& exit_code);    // taa-test (experiments/taa_test/)
 
 // Every command above, in the order `glintlab --help` lists them (the options fuzzer).
 void add_all_commands(CLI::App& app, int& exit_code);

@@ -1,6 +1,7 @@
 // `glintlab list`: what is built in (experiments, paths, scenes, presets,
-// debug outputs, glint models, metrics, motion conventions) and the Vulkan devices.
+// debug outputs, glint models, TAA resolves, metrics, motion conventions) and the Vulkan devices.
 #include "core/material/glint_model.h"
+#include "core/render/taa_resolve.h"
 #include "core/material/sand_material.h"
 #include "core/scene/camera_path.h"
 #include "core/vk/vk_context.h"
@@ -56,6 +57,7 @@ void add_list_command(CLI::App& app, int& exit_code) {
           print("scenes (mesh types)", {"plane", "wavy", "sphere", "dunes"});
           print("material presets", core::SandParams::preset_names());
           print("glint models", core::glint_model_names());
+          print("TAA resolves (\"taa\": {\"name\": ...}, taa-test)", core::taa_resolve_names());
           print("debug outputs", core::SandParams::debug_output_names());
           print("metrics", metrics::metric_names());
           print("metric groups", metrics::metric_group_names());

@@ -367,62 +367,6 @@ std::pair<GlintCheckResult, GlintCheckResult> check_coherence(const Evaluator& e
 
 }  // namespace
 
-bool GlintTestReport::all_pass() const {
-  for (const auto& c : checks)
-    if (c.applies && !c.figure_only && c.pass == c.expected_failure) return false;
-  return true;
-}
-
-nlohmann::ordered_json GlintTestReport::json() const {
-  nlohmann::ordered_json j;
-  j["model"] = model;
-  j["file"] = file;
-  j["device"] = device;
-  nlohmann::ordered_json p = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : parameters) p[k] = v;
-  j["parameters"] = p;
-  nlohmann::ordered_json cs = nlohmann::ordered_json::array();
-  for (const auto& c : checks) {
-    nlohmann::ordered_json e;
-    e["check"] = c.name;
-    e["applies"] = c.applies;
-    if (c.expected_failure) e["expected_failure"] = true;
-    e["figure"] = std::isfinite(c.figure) ? nlohmann::ordered_json(c.figure) : nlohmann::ordered_json(nullptr);
-    e["unit"] = c.unit;
-    if (!c.figure_only) {
-      e["bound"] = c.bound;
-      e["pass"] = c.pass;
-    }
-    e["detail"] = c.detail;
-    cs.push_back(e);
-  }
-  j["checks"] = cs;
-  j["pass"] = all_pass();
-  return j;
-}
-
-std::string GlintTestReport::text() const {
-  std::ostringstream o;
-  o << "glint-test " << model << " (" << file << ")";
-  for (const auto& [k, v] : parameters) o << " " << k << "=" << v;
-  o << " on " << device << "\n";
-  for (const auto& c : checks) {
-    const char* verdict = c.figure_only        ? "      "
-                          : !c.applies         ? "n/a   "
-                          : c.expected_failure ? (c.pass ? "PASS? " : "fails ")
-                          : c.pass             ? "pass  "
-                                               : "FAIL  ";
-    o << "  " << verdict << std::left << std::setw(16) << c.name << std::right << fmt(c.figure, 4) << " " << c.unit;
-    if (!c.figure_only) o << " (bound " << fmt(c.bound) << ")";
-    if (!c.applies) o << " [not declared]";
-    if (c.expected_failure)
-      o << (c.pass ? " [declared fails= but passes: take it out of fails=]" : " [declared fails=: the published method's own]");
-    o << "\n        " << c.detail << "\n";
-  }
-  o << "glint-test: " << (all_pass() ? "every applying check passes" : "a check FAILED") << "\n";
-  return o.str();
-}
-
 core::GlintModelDecl resolve_glint_model(const std::string& m) {
   if (const core::GlintModelDecl* d = core::find_builtin_glint_model(m)) return *d;
   if (m.find('/') == std::string::npos && m.find(".glsl") == std::string::npos) {
@@ -466,60 +410,32 @@ std::vector<float> glint_test_parameters(const core::GlintModelDecl& d, const st
 
 GlintTestReport run_glint_test(core::VkContext& ctx, const core::GlintModelDecl& d, const std::vector<float>& params) {
   GlintTestReport r;
-  r.model = d.name;
+  r.suite = "glint-test";
+  r.subject_key = "model";
+  r.subject = d.name;
   r.file = d.file;
   r.device = ctx.info().name;
-  for (size_t i = 0; i < d.parameters.size(); ++i) r.parameters.push_back({d.parameters[i].name, params[i]});
+  for (size_t i = 0; i < d.parameters.size(); ++i) r.parameters[d.parameters[i].name] = params[i];
   Evaluator eval(ctx, d, params);
-  auto in = [](const std::vector<std::string>& list, const std::string& c) {
-    return std::find(list.begin(), list.end(), c) != list.end();
-  };
   GlintCheckResult finite = check_finite(eval);
   auto [unbiased, deterministic] = check_unbiased(eval);
   GlintCheckResult limit = check_limit(eval);
   auto [lod, shift] = check_coherence(eval);
-  for (GlintCheckResult* c : {&finite, &unbiased, &limit, &deterministic}) {
-    c->expected_failure = in(d.fails, c->name);
-    c->applies = in(d.checks, c->name) || c->expected_failure;
-  }
+  for (GlintCheckResult* c : {&finite, &unbiased, &limit, &deterministic}) apply_declaration(*c, d.checks, d.fails);
   r.checks = {finite, unbiased, limit, deterministic, lod, shift};
   return r;
 }
 
 void add_glint_test_command(CLI::App& app, int& exit_code) {
-  struct Options {
-    std::string model, device;
-    std::vector<std::string> parameters;
-    bool json = false, validation = false;
-  };
-  auto o = std::make_shared<Options>();
-  o->validation = core::VkContext::validation_requested_by_env();
-  CLI::App* c = app.add_subcommand(
-      "glint-test", "the conformance suite of a glint model (built-in name or .glsl file): finite, unbiased, limit, "
-                    "deterministic, LOD and shift coherence on the GPU (exit 1 if a declared check fails)");
-  c->add_option("model", o->model, "a built-in glint_D model (see `list`) or a model file")->required();
-  c->add_option("--parameters", o->parameters, "NAME=VALUE of the model's own parameters (repeatable)");
-  c->add_flag("--json", o->json, "print the report as JSON on stdout");
-  c->add_option("--device", o->device, "Vulkan device: index or part of its name (default: lavapipe)");
-  c->add_flag("--validation", o->validation, "enable Vulkan validation layers (also GLINTLAB_VALIDATION=1)");
-  c->callback([o, &exit_code] {
-    exit_code = run_guarded(
-        [o] {
-          const core::GlintModelDecl d = resolve_glint_model(o->model);
-          const std::vector<float> params = glint_test_parameters(d, o->parameters);
-          core::VkContext ctx(core::ContextOptions{o->device, o->validation});
-          GlintTestReport r = run_glint_test(ctx, d, params);
-          if (o->json) std::cout << r.json().dump(2) << "\n";
-          else std::cout << r.text();
-          if (ctx.validation_message_count() > 0) {
-            std::cerr << "error: " << ctx.validation_message_count()
-                      << " Vulkan validation message(s), first: " << ctx.validation_messages().front() << "\n";
-            return int(kExitDefect);
-          }
-          return int(r.all_pass() ? kExitOk : kExitDefect);
-        },
-        std::cerr);
-  });
+  add_conformance_command(
+      app, exit_code, "glint-test",
+      "the conformance suite of a glint model (built-in name or .glsl file): finite, unbiased, limit, "
+      "deterministic, LOD and shift coherence on the GPU (exit 1 if a declared check fails)",
+      "model", "a built-in glint_D model (see `list`) or a model file", [](const ConformanceCommandOptions& o) {
+        const core::GlintModelDecl d = resolve_glint_model(o.subject);
+        const std::vector<float> params = glint_test_parameters(d, o.parameters);
+        return ConformanceSuite([d, params](core::VkContext& ctx) { return run_glint_test(ctx, d, params); });
+      });
 }
 
 }  // namespace glintlab

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "core/material/glint_model.h"
+#include "experiments/conformance/report.h"
 #include "core/vk/vk_context.h"
 
 #include <CLI/CLI.hpp>
@@ -23,28 +24,8 @@
 
 namespace glintlab {
 
-struct GlintCheckResult {
-  std::string name;
-  bool applies = true;  // declared by the model (figures always apply)
-  // Declared in fails=: the published method fails it by design; the suite
-  // passes when it fails and flags it when it passes.
-  bool expected_failure = false;
-  bool figure_only = false;
-  bool pass = true;
-  double figure = 0.0;
-  double bound = 0.0;
-  std::string unit;    // how figure and bound read
-  std::string detail;  // what was evaluated
-};
-
-struct GlintTestReport {
-  std::string model, file, device;
-  std::vector<std::pair<std::string, double>> parameters;
-  std::vector<GlintCheckResult> checks;
-  bool all_pass() const;  // every applying pass/fail check passes
-  nlohmann::ordered_json json() const;
-  std::string text() const;
-};
+using GlintCheckResult = ConformanceCheck;
+using GlintTestReport = ConformanceReport;
 
 // A built-in model's name, or a path to a model file.
 core::GlintModelDecl resolve_glint_model(const std::string& model_or_file);

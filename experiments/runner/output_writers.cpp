@@ -1,6 +1,6 @@
 #include "experiments/runner/output_writers.h"
 
-#include "core/render/taa_settings.h"
+#include "core/render/taa_resolve.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_check.h"
 #include "experiments/runner/contact_sheet.h"
@@ -24,22 +24,6 @@ fs::path frame_path(const fs::path& dir, int frame, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04d.%s", frame, ext);
   return dir / name;
-}
-
-nlohmann::json taa_json(const core::TaaSettings& t) {
-  return {{"jitter", enum_name(core::kJitterNames, t.jitter)},
-          {"alpha", t.alpha},
-          {"clamp", enum_name(core::kTaaClampNames, t.clamp)},
-          {"gamma", t.gamma},
-          {"space", enum_name(core::kTaaSpaceNames, t.space)},
-          {"history_filter", enum_name(core::kTaaHistoryFilterNames, t.history_filter)},
-          {"dering", t.dering},
-          {"velocity", enum_name(core::kTaaVelocityNames, t.velocity)},
-          {"feedback", enum_name(core::kTaaFeedbackNames, t.feedback)},
-          {"hdr", enum_name(core::kTaaHdrNames, t.hdr)},
-          {"anti_flicker", t.anti_flicker},
-          {"disocclusion", t.disocclusion},
-          {"disocclusion_tolerance", t.disocclusion_tolerance}};
 }
 
 // Collects what the journal holds for the schema: metric and floor names (in order), pass names (first seen).
@@ -219,7 +203,7 @@ void SummaryWriter::finish() {
       }
       e["spp"] = v.samples_per_pixel();
       if (v.aa == AaMethod::Ssaa) e["ssaa_grid"] = v.ssaa_grid;
-      if (v.aa == AaMethod::Taa) e["taa"] = taa_json(v.taa);
+      if (v.aa == AaMethod::Taa) e["taa"] = v.taa.to_json();
       e["debug"] = v.debug;
       e["material"] = v.material_json;  // preset and every override (glints, energy_consistent, ...)
       if (v.truth_material) e["truth_material"] = v.truth_material_json;

@@ -6,6 +6,7 @@
 #include "core/util/content_hash.h"
 #include "core/util/data_dir.h"
 #include "core/util/json_check.h"
+#include "core/render/taa_pass.h"
 #include "core/vk/shader_compiler.h"
 #include "core/vk/vk_context.h"
 #include "experiments/cli/exit_codes.h"
@@ -75,7 +76,7 @@ void print_table(std::ostream& log, const nlohmann::json& summary) {
 }
 
 // The content of every file the run reads besides the experiment file (whose JSON is in the header):
-// the camera-path file, the HDRI, the OCIO config, the glint model files, the frames of frame sources. A resume or a merge
+// the camera-path file, the HDRI, the OCIO config, the glint model and TAA resolve files, the frames of frame sources. A resume or a merge
 // with any of them changed is refused, naming it.
 nlohmann::json run_input_hashes(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
   nlohmann::json out = nlohmann::json::object();
@@ -89,6 +90,11 @@ nlohmann::json run_input_hashes(const ExperimentSpec& spec, const metrics::Color
         out["glint_model " + m->glint_file->file] =
             file_content_hash(m->glint_file->file) + " " +
             core::default_shader_compiler().source_hash(m->glint_file->file, core::ShaderStage::Compute);
+  for (const auto& v : spec.variants)  // a user's TAA resolve file and what it includes
+    if (v.aa == AaMethod::Taa && !v.taa.resolve->builtin)
+      out["taa_resolve " + v.taa.resolve->file] =
+          file_content_hash(v.taa.resolve->file) + " " +
+          core::default_shader_compiler().source_hash(v.taa.resolve->file, core::ShaderStage::Fragment, v.taa.defines());
   auto add = [&](const std::string& seq, const std::string& what) {
     if (seq.empty()) return;
     const std::vector<int> numbers = first_frame_numbers(seq, spec.frames, what);
@@ -337,6 +343,9 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
 
   const metrics::ColorManager cm = load_color_manager(opt.ocio_config);
   check_color_names(spec, cm);  // before anything is written or rendered
+  // A user's resolve file compiles before anything is written (ShaderCompileError naming its line: exit 3).
+  for (const auto& v : spec.variants)
+    if (v.aa == AaMethod::Taa && !v.taa.resolve->builtin) core::TaaPass::compile(v.taa);
   // ---- the device: part of what identifies the run (a resume or merge on another device is refused)
   core::VkContext ctx(core::ContextOptions{opt.device, opt.validation});
   const fs::path out_dir(opt.out_dir);

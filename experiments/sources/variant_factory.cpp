@@ -23,11 +23,12 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
       r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
       break;
     case AaMethod::Taa:
-      o.motion = true;
-      o.glint = v.taa.reads_glints();  // the glint layer, only where an option reads it
+      auto taa = std::make_unique<core::TaaPass>(ctx, v.taa);
+      o.motion = taa->uses().motion;  // motion vectors and the glint layer, only where the resolve reads them
+      o.glint = taa->uses().glint;
       r.output = "taa.color";
       r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
-      r.graph->add(std::make_unique<core::TaaPass>(ctx, v.taa));
+      r.graph->add(std::move(taa));
       break;
   }
   r.graph->build({r.output});

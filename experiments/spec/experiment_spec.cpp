@@ -53,31 +53,43 @@ E get_named(JsonReader& r, const std::string& key, const EnumTable<E, N>& table,
   return *enum_from_name(table, r.get_enum(key, enum_name(table, def), enum_names(table)));
 }
 
-core::TaaSettings parse_taa(JsonReader& r) {
-  core::TaaSettings t;
-  t.jitter = get_named(r, "jitter", core::kJitterNames, t.jitter);
-  t.alpha = r.get_number("alpha", t.alpha, 1e-4, 1.0);
-  t.clamp = get_named(r, "clamp", core::kTaaClampNames, t.clamp);
-  t.gamma = r.get_number("gamma", t.gamma, 0.0, 100.0);
-  t.space = get_named(r, "space", core::kTaaSpaceNames, t.space);
-  t.history_filter = get_named(r, "history_filter", core::kTaaHistoryFilterNames, t.history_filter);
-  t.dering = r.get_bool("dering", t.dering);
-  t.velocity = get_named(r, "velocity", core::kTaaVelocityNames, t.velocity);
-  t.feedback = get_named(r, "feedback", core::kTaaFeedbackNames, t.feedback);
-  t.hdr = get_named(r, "hdr", core::kTaaHdrNames, t.hdr);
-  t.anti_flicker = r.get_bool("anti_flicker", t.anti_flicker);
-  t.disocclusion = r.get_bool("disocclusion", t.disocclusion);
-  t.disocclusion_tolerance = r.get_number("disocclusion_tolerance", t.disocclusion_tolerance, 1e-4, 10.0);
-  t.accumulate = r.get_bool("accumulate", t.accumulate);
-  t.reactive = r.get_number("reactive", t.reactive, 0.0, 1.0);
-  t.glint_layer = r.get_bool("glint_layer", t.glint_layer);
-  t.glint_alpha = r.get_number("glint_alpha", t.glint_alpha, 1e-4, 1.0);
-  t.glint_clamp = get_named(r, "glint_clamp", core::kTaaGlintClampNames, t.glint_clamp);
-  t.glint_lock = r.get_bool("glint_lock", t.glint_lock);
-  if (!t.disocclusion && r.has("disocclusion_tolerance"))
-    r.fail("disocclusion_tolerance", "only applies with \"disocclusion\": true");
-  if (!t.glint_layer && (r.has("glint_alpha") || r.has("glint_clamp")))
-    r.fail(r.has("glint_alpha") ? "glint_alpha" : "glint_clamp", "only applies with \"glint_layer\": true");
+// A path given in an experiment file is relative to the file's folder.
+std::string relative_to(const std::string& file, const std::string& path);
+
+// A variant's "taa" object: {"name": BUILT-IN} or {"file": PATH} with {"parameters": {...}}, or the
+// flat form {PARAMETER or OPTION of falcor: ...}; "jitter" in every form. Each value is checked against
+// the resolve's declaration: its range, its choices, and "requires=" (a value set where the bool it
+// requires is false is an error).
+core::TaaSettings parse_taa(JsonReader& r, const std::string& file) {
+  const core::JitterSequence jitter = get_named(r, "jitter", core::kJitterNames, core::JitterSequence::Halton16);
+  if (r.has("name") && r.has("file")) r.fail("file", "give either \"name\" (a built-in resolve) or \"file\", not both");
+  core::TaaResolveDecl decl;
+  if (r.has("file")) {
+    const std::string path = relative_to(file, r.get_string("file"));
+    try {
+      decl = core::taa_resolve_from_file(path);
+    } catch (const ConfigError& e) {
+      r.fail("file", e.what());
+    }
+  } else {
+    decl = *core::find_builtin_taa_resolve(r.get_enum("name", core::kTaaDefaultResolve, core::taa_resolve_names()));
+  }
+  core::TaaSettings t(decl);
+  t.jitter = jitter;
+  const bool flat = !r.has("name") && !r.has("file");
+  std::optional<JsonReader> child = flat ? std::nullopt : r.optional_child("parameters");
+  JsonReader* pr = flat ? &r : child ? &*child : nullptr;
+  if (pr) {
+    for (const auto& p : decl.parameters)
+      t.set(p.name, p.is_bool ? (pr->get_bool(p.name, p.def != 0.0) ? 1.0 : 0.0) : pr->get_number(p.name, p.def, p.lo, p.hi));
+    for (const auto& o : decl.options) t.set(o.name, pr->get_enum(o.name, o.choices[o.def], o.choices));
+    auto check_requires = [&](const std::string& name, const std::string& req) {
+      if (!req.empty() && pr->has(name) && !t.on(req)) pr->fail(name, "only applies with \"" + req + "\": true");
+    };
+    for (const auto& p : decl.parameters) check_requires(p.name, p.requires_bool);
+    for (const auto& o : decl.options) check_requires(o.name, o.requires_bool);
+    pr->finish();
+  }
   r.finish();
   return t;
 }
@@ -253,7 +265,7 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
       v.taa_json = vr.raw("taa");
       if (!v.taa_json.is_object()) vr.fail("taa", "expected an object of TAA options");
       JsonReader tr(v.taa_json, file, vr.key_path("taa"));
-      v.taa = parse_taa(tr);
+      v.taa = parse_taa(tr, file);
     }
     v.debug = vr.get_enum("debug", "final", core::SandParams::debug_output_names());
     // The experiment's material with the variant's overrides of `key`, key by key at every depth (a JSON

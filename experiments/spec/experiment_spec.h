@@ -10,10 +10,9 @@
 //   "camera_path": "orbit-close" | "paths/x.json" | {inline CameraPath},
 //   "material": {"preset": "thesis-default", <SandParams overrides>},
 //   "variants": [ {"name": "no-aa", "aa": "none" | "ssaa" | "taa", "ssaa_grid": 2,
-//                  "taa": {"jitter": "halton16", "alpha": 0.1, "clamp": "variance", "gamma": 1.0,
-//                          "space": "ycocg", "history_filter": "catmull_rom", "dering": false,
-//                          "velocity": "longest", "feedback": "karis", "hdr": "none", "anti_flicker": false,
-//                          "disocclusion": false, "disocclusion_tolerance": 0.05},  // taa only; defaults = Falcor
+//                  "taa": {"jitter": "halton16", "name": "falcor" | "file": "my_resolve.glsl",
+//                          "parameters": {<the resolve's declared parameters and options>}},  // taa only
+//                  // or the flat form "taa": {"jitter": ..., <falcor's parameters and options>}
 //                  "debug": "final" | <debug output>, "material": {<overrides>},
 //                  "truth_material": {<overrides>}} ],   // its truth's material, if not "material"
 //   "reference": {"enabled": true, "grid": 16},   // grid^2 stratified samples, box filter
@@ -33,7 +32,7 @@
 #include "core/scene/camera_path.h"
 #include "core/scene/environment.h"
 #include "core/scene/mesh.h"
-#include "core/render/taa_settings.h"
+#include "core/render/taa_resolve.h"
 #include "core/util/json_check.h"
 #include "core/util/named_enum.h"
 #include "core/material/sand_material.h"
@@ -54,14 +53,14 @@ enum class AaMethod { None, Ssaa, Taa };
 inline constexpr EnumTable<AaMethod, 3> kAaNames{{
     {AaMethod::None, "none"},  // one sample at each pixel centre
     {AaMethod::Ssaa, "ssaa"},  // ssaa_grid^2 stratified samples, one fixed pattern
-    {AaMethod::Taa, "taa"},    // one jittered sample + the TAA resolve (core/render/taa_settings.h)
+    {AaMethod::Taa, "taa"},    // one jittered sample + the TAA resolve (core/render/taa_resolve.h)
 }};
 
 struct VariantSpec {
   std::string name;
   AaMethod aa = AaMethod::None;
   int ssaa_grid = 1;        // ssaa: grid x grid stratified samples per pixel
-  core::TaaSettings taa;    // taa: every choice of the resolve ("taa" object)
+  core::TaaSettings taa;    // taa: the resolve, its parameters and options, the jitter ("taa" object)
   std::string debug = "final";
   core::SandParams material;  // experiment material + this variant's overrides
   nlohmann::json material_json;  // the merged object (for hashing and the summary)

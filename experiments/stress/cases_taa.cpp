@@ -18,7 +18,7 @@
 // variance, Catmull-Rom history with clamp none) are compared with an fp64
 // model of the resolve: out = (1 - alpha) h + alpha current where the history
 // is valid (not the first frame, on screen, the surface the history holds (the
-// disocclusion test of passes/taa.frag, modelled in fp64),
+// disocclusion test of taa/falcor.glsl, modelled in fp64),
 // finite), else current; h = the bilinear or Catmull-Rom (4x4 texels,
 // negative results to 0) resample of the last output at p + 1/2 - v, clamped
 // to mean +- gamma sigma of the 3x3 current colours for the variance
@@ -57,13 +57,13 @@ struct Config {
 Config simple_config() {
   Config c;
   c.label = "no-clamp";
-  c.s.clamp = core::TaaClamp::None;
-  c.s.space = core::TaaSpace::Rgb;
-  c.s.history_filter = core::TaaHistoryFilter::Bilinear;
-  c.s.velocity = core::TaaVelocity::Center;
-  c.s.feedback = core::TaaFeedback::Fixed;
-  c.s.hdr = core::TaaHdr::None;
-  c.s.disocclusion = true;
+  c.s.set("clamp", "none");
+  c.s.set("space", "rgb");
+  c.s.set("history_filter", "bilinear");
+  c.s.set("velocity", "center");
+  c.s.set("feedback", "fixed");
+  c.s.set("hdr", "none");
+  c.s.set("disocclusion", true);
   c.fp64 = true;
   return c;
 }
@@ -71,14 +71,14 @@ Config simple_config() {
 Config catmull_rom_config() {
   Config c = simple_config();
   c.label = "no-clamp-catmull-rom";
-  c.s.history_filter = core::TaaHistoryFilter::CatmullRom;
+  c.s.set("history_filter", "catmull_rom");
   return c;
 }
 // The same with the variance clamp (mean +- gamma sigma over 3x3, in rgb).
 Config variance_rgb_config() {
   Config c = simple_config();
   c.label = "variance-rgb";
-  c.s.clamp = core::TaaClamp::Variance;
+  c.s.set("clamp", "variance");
   c.local = true;
   return c;
 }
@@ -96,24 +96,24 @@ Config with(std::string label, bool local, const std::function<void(core::TaaSet
   return c;
 }
 
-// The glint-aware options (core/render/taa_settings.h), each on Falcor's defaults: the glint layer of
+// The glint-aware options (shaders/taa/falcor.glsl), each on Falcor's defaults: the glint layer of
 // taa_stress.frag is its pattern-2 bright pixels. Rectified (out <= 2.5 x the 3x3 current maximum)
 // where every history is clamped: the schedule and the layer with its own min/max box; the reactive
 // mask, the locks and the unclamped layer keep unrectified history by design.
 std::vector<Config> glint_configs() {
   std::vector<Config> c;
-  c.push_back(with("accumulate", true, [](core::TaaSettings& s) { s.accumulate = true; }));
+  c.push_back(with("accumulate", true, [](core::TaaSettings& s) { s.set("accumulate", true); }));
   c.push_back(with("glint-layer-minmax", true, [](core::TaaSettings& s) {
-    s.glint_layer = true;
-    s.glint_clamp = core::TaaGlintClamp::MinMax;
-    s.dering = true;
+    s.set("glint_layer", true);
+    s.set("glint_clamp", "minmax");
+    s.set("dering", true);
   }));
   c.push_back(with("glint-layer-none-accumulate", false, [](core::TaaSettings& s) {
-    s.glint_layer = true;
-    s.accumulate = true;
+    s.set("glint_layer", true);
+    s.set("accumulate", true);
   }));
-  c.push_back(with("reactive", false, [](core::TaaSettings& s) { s.reactive = 0.5; }));
-  c.push_back(with("glint-lock", false, [](core::TaaSettings& s) { s.glint_lock = true; }));
+  c.push_back(with("reactive", false, [](core::TaaSettings& s) { s.set("reactive", 0.5); }));
+  c.push_back(with("glint-lock", false, [](core::TaaSettings& s) { s.set("glint_lock", true); }));
   return c;
 }
 std::vector<Config> plus_glint_configs(std::vector<Config> c) {
@@ -156,7 +156,7 @@ double model_pixel(const Image& cur, const Image* prev, const Image& motion, con
     return double(img.at(i, j, ch));
   };
   auto at = [&](int i, int j) { return tap(*prev, i, j, c); };
-  // disocclusion (passes/taa.frag, same_surface; the stress frames have no jitter): the nearest
+  // disocclusion (taa/falcor.glsl, same_surface; the stress frames have no jitter): the nearest
   // surface of the 3x3 now; last frame's nearest of each 3x3 (what the history keeps) at the bilinear
   // taps of weight > 0 around that surface's reprojected position; its previous distance within their
   // range widened by tol (a tap of sky leaves the range open above; no surface now needs a tap of sky)
@@ -251,7 +251,7 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
     o.sky = false;
     o.motion = true;
     o.color_format = spec.color_format;
-    o.glint = cfg.s.reads_glints();
+    o.glint = cfg.s.uses().glint;
     g.add(std::make_unique<core::SurfacePass>(env.ctx, scene, o));
     g.add(std::make_unique<core::TaaPass>(env.ctx, cfg.s));
     g.build({"taa.color", "color", "motion"});
@@ -311,9 +311,9 @@ StressCaseResult run_taa_case(Env& env, const TaaCaseSpec& spec) {
             }
             if (cfg.fp64) {
               double want = model_pixel(cur, have_prev ? &prev : nullptr, mot, have_prev ? &prev_motion : nullptr,
-                                        float(cfg.s.alpha), cfg.s.disocclusion_tolerance,
-                                        cfg.s.clamp == core::TaaClamp::Variance ? cfg.s.gamma : 0.0,
-                                        cfg.s.history_filter == core::TaaHistoryFilter::CatmullRom, x, y, c);
+                                        float(cfg.s.value("alpha")), cfg.s.value("disocclusion_tolerance"),
+                                        cfg.s.option("clamp") == "variance" ? cfg.s.value("gamma") : 0.0,
+                                        cfg.s.option("history_filter") == "catmull_rom", x, y, c);
               err.add(v, want, 1e-30, cfg.label + " frame " + std::to_string(k) + " (" + std::to_string(x) + ", " +
                                           std::to_string(y) + ")");
             }
@@ -359,19 +359,19 @@ std::vector<TaaFrame> huge_then_normal(float huge, int normal_frames) {
 void add_taa_cases(std::vector<Case>& cases) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   Config minmax = with("minmax-rgb-catmull", true, [](core::TaaSettings& s) {
-    s.clamp = core::TaaClamp::MinMax;
-    s.space = core::TaaSpace::Rgb;
+    s.set("clamp", "minmax");
+    s.set("space", "rgb");
   });
-  Config clip = with("clip-ycocg", true, [](core::TaaSettings& s) { s.clamp = core::TaaClamp::Clip; });
-  Config tonemap = with("variance-tonemap", true, [](core::TaaSettings& s) { s.hdr = core::TaaHdr::Tonemap; });
+  Config clip = with("clip-ycocg", true, [](core::TaaSettings& s) { s.set("clamp", "clip"); });
+  Config tonemap = with("variance-tonemap", true, [](core::TaaSettings& s) { s.set("hdr", "tonemap"); });
   Config inv_luma = with("variance-inverse-luma-luma-feedback", true, [](core::TaaSettings& s) {
-    s.hdr = core::TaaHdr::InverseLuma;
-    s.feedback = core::TaaFeedback::Luma;
+    s.set("hdr", "inverse_luma");
+    s.set("feedback", "luma");
   });
-  Config flicker = with("anti-flicker", false, [](core::TaaSettings& s) { s.anti_flicker = true; });
+  Config flicker = with("anti-flicker", false, [](core::TaaSettings& s) { s.set("anti_flicker", true); });
   Config closest = with("closest-depth-none-clamp", false, [](core::TaaSettings& s) {
-    s.velocity = core::TaaVelocity::ClosestDepth;
-    s.clamp = core::TaaClamp::None;
+    s.set("velocity", "closest_depth");
+    s.set("clamp", "none");
   });
   std::vector<TaaCaseSpec> specs;
   specs.push_back({"taa.huge-history.falcor", true, {falcor_config()}, huge_then_normal(1e30f, 4), 32, 18,
@@ -446,7 +446,7 @@ void add_taa_cases(std::vector<Case>& cases) {
     for (float d : dist) f.push_back({glm::vec3(64.0f), 2, 0.04f, true, {0.37f, -0.61f}, d});
     Config falcor_tested = falcor_config();
     falcor_tested.label = "falcor-disocclusion";
-    falcor_tested.s.disocclusion = true;
+    falcor_tested.s.set("disocclusion", true);
     specs.push_back({"taa.disocclusion", true, plus_glint_configs({simple_config(), falcor_config(), falcor_tested}),
                      f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -475,15 +475,15 @@ void add_taa_cases(std::vector<Case>& cases) {
     // keeps the history within its 2x2 texels.
     std::vector<TaaFrame> f;
     for (int k = 0; k < 6; ++k) f.push_back({glm::vec3(64.0f), 2, 0.04f, true, {0.37f, -0.61f}});
-    Config dflt = with("falcor-dering", true, [](core::TaaSettings& s) { s.dering = true; });
+    Config dflt = with("falcor-dering", true, [](core::TaaSettings& s) { s.set("dering", true); });
     dflt.floor = true;
     Config ycocg_clip = with("clip-ycocg-catmull-dering", true, [](core::TaaSettings& s) {
-      s.clamp = core::TaaClamp::Clip;
-      s.dering = true;
+      s.set("clamp", "clip");
+      s.set("dering", true);
     });
     ycocg_clip.floor = true;
     Config bilinear = with("bilinear", true,
-                           [](core::TaaSettings& s) { s.history_filter = core::TaaHistoryFilter::Bilinear; });
+                           [](core::TaaSettings& s) { s.set("history_filter", "bilinear"); });
     bilinear.floor = true;
     specs.push_back({"taa.sparse-glints-no-ringing", true, plus_glint_configs({dflt, ycocg_clip, bilinear}), f, 32, 18,
                      VK_FORMAT_R32G32B32A32_SFLOAT,

@@ -12,6 +12,7 @@
 #include "experiments/spec/experiment_spec.h"
 
 #include "tests/support/temp_dir.h"
+#include "tests/support/user_file_run.h"
 #include "tests/support/vk_test_util.h"
 
 #include <gtest/gtest.h>
@@ -183,26 +184,9 @@ nlohmann::json user_experiment(const nlohmann::json& model) {
   return j;
 }
 
-RunOptions options(const fs::path& exp, const fs::path& out) {
-  RunOptions o;
-  o.experiment = exp.string();
-  o.out_dir = out.string();
-  o.cache_dir = (out.parent_path() / "cache").string();
-  o.validation = true;
-  o.report = false;
-  return o;
-}
-
-void write(const fs::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+RunOptions options(const fs::path& exp, const fs::path& out) { return test::user_file_run_options(exp, out); }
+void write(const fs::path& p, const std::string& text) { test::write_text(p, text); }
+std::string read(const fs::path& p) { return test::read_text(p); }
 
 }  // namespace
 

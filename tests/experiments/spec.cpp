@@ -220,12 +220,14 @@ TEST(ExperimentSpec, GlintAwareTaaKeysAreCheckedBeforeAnyWork) {
       R"([{"name": "t", "aa": "taa", "taa": {"glint_layer": true, "glint_alpha": 0.3, "glint_clamp": "minmax",
            "accumulate": true, "reactive": 0.5, "glint_lock": true}}])");
   const glintlab::core::TaaSettings t = ExperimentSpec::from_json(j, kFile).variants[0].taa;
-  EXPECT_TRUE(t.glint_layer && t.accumulate && t.glint_lock);
-  EXPECT_EQ(t.glint_clamp, glintlab::core::TaaGlintClamp::MinMax);
-  EXPECT_DOUBLE_EQ(t.glint_alpha, 0.3);
-  EXPECT_DOUBLE_EQ(t.reactive, 0.5);
-  EXPECT_TRUE(t.reads_glints() && t.keeps_extra());
-  EXPECT_FALSE(glintlab::core::TaaSettings{}.reads_glints() || glintlab::core::TaaSettings{}.keeps_extra()) << "off by default";
+  EXPECT_TRUE(t.on("glint_layer") && t.on("accumulate") && t.on("glint_lock"));
+  EXPECT_EQ(t.option("glint_clamp"), "minmax");
+  EXPECT_DOUBLE_EQ(t.value("glint_alpha"), 0.3);
+  EXPECT_DOUBLE_EQ(t.value("reactive"), 0.5);
+  const glintlab::core::TaaUses u = t.uses(), off = glintlab::core::TaaSettings{}.uses();
+  EXPECT_TRUE(u.glint && u.state && u.history2 && !u.state2);
+  EXPECT_FALSE(off.glint || off.state || off.state2 || off.history2) << "off by default";
+  EXPECT_TRUE(off.motion);
 }
 
 // Falcor's TAA has no depth test, so neither has a "taa" object with no key set; its tolerance
@@ -233,15 +235,15 @@ TEST(ExperimentSpec, GlintAwareTaaKeysAreCheckedBeforeAnyWork) {
 TEST(ExperimentSpec, TheDisocclusionTestIsOffByDefaultAndItsToleranceNeedsIt) {
   json j = minimal();
   j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {}}])");
-  EXPECT_FALSE(ExperimentSpec::from_json(j, kFile).variants[0].taa.disocclusion);
+  EXPECT_FALSE(ExperimentSpec::from_json(j, kFile).variants[0].taa.on("disocclusion"));
   j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"disocclusion_tolerance": 0.1}}])");
   expect_rejected(j, {"variants[0].taa.disocclusion_tolerance", "\"disocclusion\": true"});
   j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"disocclusion": true, "disocclusion_tolerance": 0}}])");
   expect_rejected(j, {"variants[0].taa.disocclusion_tolerance", "out of range"});
   j["variants"] = json::parse(R"([{"name": "t", "aa": "taa", "taa": {"disocclusion": true, "disocclusion_tolerance": 0.1}}])");
   const glintlab::core::TaaSettings t = ExperimentSpec::from_json(j, kFile).variants[0].taa;
-  EXPECT_TRUE(t.disocclusion);
-  EXPECT_DOUBLE_EQ(t.disocclusion_tolerance, 0.1);
+  EXPECT_TRUE(t.on("disocclusion"));
+  EXPECT_DOUBLE_EQ(t.value("disocclusion_tolerance"), 0.1);
 }
 
 TEST(ExperimentSpec, RejectsUnknownDebugOutput) {

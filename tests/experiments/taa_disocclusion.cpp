@@ -1,5 +1,5 @@
 // The TAA resolve's disocclusion test (option `disocclusion`, passes/taa.frag same_surface), counted
-// pixel by pixel through the count of accumulated frames the resolve keeps (taa.extra.a with
+// pixel by pixel through the count of accumulated frames the resolve keeps (taa.state.y with
 // `accumulate`: n = k + 1 at frame k where the history was kept every frame, 1 where it restarted):
 //  - a static, jittered camera over a plane seen down to the horizon, where the distance changes by
 //    more than the tolerance within a pixel: the pixels that see the plane keep their history;
@@ -78,18 +78,18 @@ json ridge_view(int frames, double glints) {
 core::TaaSettings accumulating(core::JitterSequence jitter) {
   core::TaaSettings s;  // the 1/n schedule with no rectification: the mean of the frames since a restart
   s.jitter = jitter;
-  s.clamp = core::TaaClamp::None;
-  s.feedback = core::TaaFeedback::Fixed;
-  s.alpha = 1.0 / 64;
-  s.accumulate = true;
-  s.disocclusion = true;
+  s.set("clamp", "none");
+  s.set("feedback", "fixed");
+  s.set("alpha", 1.0 / 64);
+  s.set("accumulate", true);
+  s.set("disocclusion", true);
   return s;
 }
 
-// Every frame of `e`'s path through a surface pass and `settings`' resolve: taa.color, taa.extra
-// (a = the frames accumulated) and the motion target (the jittered sample's surface distance in z).
+// Every frame of `e`'s path through a surface pass and `settings`' resolve: taa.color, taa.state
+// (y = the frames accumulated) and the motion target (the jittered sample's surface distance in z).
 struct Frames {
-  std::vector<Image> color, extra, motion;
+  std::vector<Image> color, state, motion;
 };
 Frames resolve(const json& e, const core::TaaSettings& settings) {
   core::VkContext& ctx = test::shared_context();
@@ -105,7 +105,7 @@ Frames resolve(const json& e, const core::TaaSettings& settings) {
   o.motion = true;
   graph.add(std::make_unique<core::SurfacePass>(ctx, scene, o));
   graph.add(std::make_unique<core::TaaPass>(ctx, settings));
-  graph.build({"taa.color", "taa.extra", "motion"});
+  graph.build({"taa.color", "taa.state", "motion"});
   Frames out;
   for (int k = 0; k < spec.frames; ++k) {
     core::FrameInputs in;
@@ -114,7 +114,7 @@ Frames resolve(const json& e, const core::TaaSettings& settings) {
     in.samples = core::samples_for(spec.path, k, spec.width, spec.height, {core::jitter_offset(settings.jitter, k)});
     core::FrameResult r = graph.execute(in);
     out.color.push_back(std::move(r.images.at("taa.color")));
-    out.extra.push_back(std::move(r.images.at("taa.extra")));
+    out.state.push_back(std::move(r.images.at("taa.state")));
     out.motion.push_back(std::move(r.images.at("motion")));
   }
   return out;
@@ -176,13 +176,13 @@ TEST(TaaDisocclusion, AStaticJitteredCameraKeepsTheHistoryOfASurfaceSeenToTheHor
     size_t counted = 0;
     for (char c : surface) counted += c;
     ASSERT_GT(counted, size_t(kW * kH / 3)) << "the plane fills the lower half of the frame";
-    for (size_t k = 1; k < f.extra.size(); ++k) {
+    for (size_t k = 1; k < f.state.size(); ++k) {
       size_t kept = 0;
       for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
-          if (surface[size_t(y) * kW + x]) kept += f.extra[k].at(x, y, 3) == float(k + 1);
+          if (surface[size_t(y) * kW + x]) kept += f.state[k].at(x, y, 1) == float(k + 1);
       const double share = double(kept) / double(counted);
-      if (k == 1 || k + 1 == f.extra.size())
+      if (k == 1 || k + 1 == f.state.size())
         std::printf("%s frame %zu: %zu of %zu plane pixels kept their history (%.4f %%)\n",
                     enum_name(core::kJitterNames, jitter), k, kept, counted, 100.0 * share);
       EXPECT_GE(share, 0.999) << "frame " << k;
@@ -244,7 +244,7 @@ TEST(TaaDisocclusion, RidgeEdgesUnderAStaticJitteredCameraConvergeToSupersamplin
           lo = std::min(lo, z);
           hi = std::max(hi, z);
         }
-      restarted += f.extra.back().at(x, y, 3) != 64.0f;
+      restarted += f.state.back().at(x, y, 1) != 64.0f;
       if (!(hi > 1.25f * lo)) continue;  // sky (0) beside sand, or a jump of distance: an edge
       ++edges;
       err_taa += std::abs(luma(f.color.back(), x, y) - luma(ssaa, x, y));
@@ -288,9 +288,9 @@ TEST(TaaDisocclusion, AMovingSquareAndACameraCutRestartExactlyThePixelsTheyShoul
   o.motion = true;
   g.add(std::make_unique<core::SurfacePass>(ctx, scene, o));
   core::TaaSettings s = accumulating(core::JitterSequence::None);
-  s.velocity = core::TaaVelocity::ClosestDepth;
+  s.set("velocity", "closest_depth");
   g.add(std::make_unique<core::TaaPass>(ctx, s));
-  g.build({"taa.extra"});
+  g.build({"taa.state"});
   for (int k = 0; k < kFrames; ++k) {
     core::FrameInputs in;
     in.frame = k;
@@ -300,12 +300,12 @@ TEST(TaaDisocclusion, AMovingSquareAndACameraCutRestartExactlyThePixelsTheyShoul
     in.uniforms.env_sh[1] = glm::vec4(corner(k), float(kSide), 1.0f);
     in.uniforms.env_sh[2] = glm::vec4(k % kCut == 0 ? glm::vec2(0.0f) : step, 2.0f, 5.0f);
     in.samples = stress::samples(cam, W, H);
-    const Image extra = g.execute(in).images.at("taa.extra");
+    const Image state = g.execute(in).images.at("taa.state");
     size_t want = 0, got = 0, wrong = 0;
     for (int y = 0; y < H; ++y)
       for (int x = 0; x < W; ++x) {
         const bool restart = k == 0 || k == kCut || (near_square(k - 1, x, y) && !near_square(k, x, y));
-        const float n = extra.at(x, y, 3);
+        const float n = state.at(x, y, 1);
         const bool restarted = n == 1.0f;
         want += restart;
         got += restarted;

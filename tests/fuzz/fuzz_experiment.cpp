@@ -129,7 +129,10 @@ void check_spec(const glintlab::ExperimentSpec& s, const nlohmann::json& j) {
     require(!v.name.empty() && names.insert(v.name).second, "variant name \"" + v.name + "\" empty or repeated");
     require(v.ssaa_grid >= 1 && v.ssaa_grid <= 16 && v.samples_per_pixel() >= 1, "ssaa_grid " + std::to_string(v.ssaa_grid));
     require(v.aa == glintlab::AaMethod::Ssaa || v.ssaa_grid == 1, "ssaa_grid set without ssaa");
-    require(v.taa.alpha >= 1e-4 && v.taa.alpha <= 1.0, "taa.alpha out of range");
+    for (size_t i = 0; i < v.taa.values.size(); ++i) {
+      const auto& p = v.taa.resolve->parameters[i];
+      require(v.taa.values[i] >= p.lo && v.taa.values[i] <= p.hi, "taa." + p.name + " out of range");
+    }
     try {
       v.material.validate();
       (void)v.material.pack();
