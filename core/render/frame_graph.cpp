@@ -63,6 +63,7 @@ struct FrameGraph::Impl final : TargetSet {
     UseState state[2];
     int current = 0;
     bool valid = false;     // history: the previous image holds last frame's value
+    int w = 0, h = 0;       // its size
     Buffer staging;         // readback targets only
     bool readback = false;
   };
@@ -160,6 +161,10 @@ void FrameGraph::build(const std::vector<std::string>& readback) {
                                     "\" and pass \"" + p->name() + "\"");
       t.name = d.name;
       t.format = d.format;
+      t.w = d.width > 0 ? d.width : g.w;
+      t.h = d.height > 0 ? d.height : g.h;
+      if (t.w > 16384 || t.h > 16384)
+        throw std::invalid_argument("frame graph: target \"" + d.name + "\" is larger than 16384 pixels");
       t.writer = p->name();
       t.usage |= usage_bit(d.use);
     }
@@ -197,7 +202,7 @@ void FrameGraph::build(const std::vector<std::string>& readback) {
   g.readback = readback;
   for (auto& [name, t] : g.targets) {
     for (int s = 0; s < (t.history ? 2 : 1); ++s)
-      t.img[s] = Image2D(g.ctx, uint32_t(g.w), uint32_t(g.h), t.format, t.usage, 1, aspects_of(t.format));
+      t.img[s] = Image2D(g.ctx, uint32_t(t.w), uint32_t(t.h), t.format, t.usage, 1, aspects_of(t.format));
     if (t.readback) t.staging = make_readback_buffer(g.ctx, t.img[0]);
   }
   if (g.ctx.timestamps_supported() && !g.passes.empty()) {
@@ -249,8 +254,8 @@ FrameResult FrameGraph::execute(const FrameInputs& in) {
     Impl::Target& t = g.targets.at(name);
     const Image2D& img = t.img[t.current];
     Image im;  // not Image(w, h, c): its zero-filled pixels would be overwritten at once
-    im.width = g.w;
-    im.height = g.h;
+    im.width = t.w;
+    im.height = t.h;
     im.channels = int(channel_count(img.format()));
     im.data = unpack_readback(img, t.staging);
     out.images[name] = std::move(im);

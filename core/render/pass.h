@@ -41,6 +41,7 @@ struct TargetDecl {
   bool writes = false;    // the pass writes it (else it only reads it)
   bool discard = false;   // writes every texel without reading: older contents need not be kept
   bool previous = false;  // reads last frame's value of a history target
+  int width = 0, height = 0;  // a written target's size; 0: the graph's (a render-scaled pass's targets)
 };
 
 // What a pass declares (Falcor's reflect()).
@@ -52,14 +53,18 @@ class PassIO {
   }
   // A target this pass writes. `discard`: it overwrites every texel (or clears
   // first) without reading the old contents.
-  void write(const std::string& name, VkFormat format, TargetUse use, bool discard = true) {
-    decls_.push_back({name, format, use, true, discard, false});
+  // `width`, `height`: its size where it is not the graph's (a pass rendering below the output
+  // resolution); 0 = the graph's.
+  void write(const std::string& name, VkFormat format, TargetUse use, bool discard = true, int width = 0,
+             int height = 0) {
+    decls_.push_back({name, format, use, true, discard, false, width, height});
   }
   // A target this pass writes and keeps across frames (its history): the graph
   // holds two images and swaps them every frame; read_previous() reads the one
   // written last frame.
-  void keep(const std::string& name, VkFormat format, TargetUse use, bool discard = true) {
-    write(name, format, use, discard);
+  void keep(const std::string& name, VkFormat format, TargetUse use, bool discard = true, int width = 0,
+            int height = 0) {
+    write(name, format, use, discard, width, height);
     history_.push_back(name);
   }
   void read_previous(const std::string& name, TargetUse use = TargetUse::Sampled) {
@@ -98,6 +103,7 @@ class TargetSet {
   // False in the first frame after build() or reset_history(): the history
   // holds nothing yet.
   virtual bool history_valid(const std::string& name) const = 0;
+  // The graph's size (its output resolution); a target's own is its image's (image(name).width()).
   virtual int width() const = 0;
   virtual int height() const = 0;
 };

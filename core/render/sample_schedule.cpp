@@ -2,6 +2,7 @@
 
 #include "core/scene/camera_path.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -29,7 +30,12 @@ double radical_inverse(uint32_t index, uint32_t base) {
   return r;
 }
 
-glm::vec2 jitter_offset(JitterSequence sequence, int frame) {
+int fsr2_jitter_phases(double render_scale) {
+  const double s = std::clamp(std::isfinite(render_scale) ? render_scale : 1.0, 0.01, 1.0);
+  return int(std::floor(8.0 / (s * s) + 1e-9));  // 1/1.5 -> 18, 1/1.7 -> 23, 1/2 -> 32, 1/3 -> 72
+}
+
+glm::vec2 jitter_offset(JitterSequence sequence, int frame, double render_scale) {
   const uint32_t k = uint32_t(frame < 0 ? 0 : frame);
   auto halton = [&](uint32_t n) {
     const uint32_t i = k % n + 1;
@@ -40,6 +46,7 @@ glm::vec2 jitter_offset(JitterSequence sequence, int frame) {
     case JitterSequence::Halton8: return halton(8);
     case JitterSequence::Halton16: return halton(16);
     case JitterSequence::Halton32: return halton(32);
+    case JitterSequence::HaltonFsr2: return halton(uint32_t(fsr2_jitter_phases(render_scale)));
     case JitterSequence::R2: {
       const double g = 1.32471795724474602596;  // plastic number: g^3 = g + 1
       const double a1 = 1.0 / g, a2 = 1.0 / (g * g);

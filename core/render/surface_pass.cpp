@@ -7,10 +7,19 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <iterator>
 
 namespace glintlab::core {
+
+namespace {
+uint32_t float_bits(float x) {
+  uint32_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+}  // namespace
 
 namespace {
 
@@ -191,6 +200,11 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   defines.push_back(std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0"));
   defines.push_back(std::string("SURFACE_GLINT=") + (opt_.glint ? "1" : "0"));
   defines.push_back(std::string("COLOR_HALF=") + (opt_.color_format == VK_FORMAT_R16G16B16A16_SFLOAT ? "1" : "0"));
+  if (opt_.footprint_scale != 1.0f) {  // as a float's bits: the shader multiplies by exactly this value
+    char text[64];
+    std::snprintf(text, sizeof text, "SURFACE_FOOTPRINT_SCALE=uintBitsToFloat(%uu)", float_bits(opt_.footprint_scale));
+    defines.push_back(text);
+  }
   CompiledShader vs = sc.compile("passes/surface.vert", ShaderStage::Vertex, defines);
   vertex_module_ = make_shader_module(ctx, vs.spirv);
   fragment_defines_ = defines;
@@ -201,7 +215,8 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
   if (!opt_.program.frame_lighting_constants) build_surface_pipeline(defines);
   if (opt_.sky) {
     std::vector<std::string> sky_defines = {std::string("SURFACE_MOTION=") + (opt_.motion ? "1" : "0"),
-                                            std::string("SURFACE_GLINT=") + (opt_.glint ? "1" : "0")};
+                                            std::string("SURFACE_GLINT=") + (opt_.glint ? "1" : "0"),
+                                            std::string("SKY_JITTERED=") + (opt_.sky_jittered ? "1" : "0")};
     CompiledShader svs = sc.compile("passes/sky.vert", ShaderStage::Vertex, sky_defines);
     CompiledShader sfs = sc.compile("passes/sky.frag", ShaderStage::Fragment, sky_defines);
     ShaderModule svm = make_shader_module(ctx, svs.spirv), sfm = make_shader_module(ctx, sfs.spirv);
@@ -276,21 +291,22 @@ SurfacePass::SurfacePass(const VkContext& ctx, const SceneGpu& scene, SurfacePas
 }
 
 void SurfacePass::declare(PassIO& io) const {
+  const int w = opt_.width, h = opt_.height;  // 0: the graph's
   if (opt_.supersample > 1 || sum_opaque_) {  // the resolve writes the colour target; the rest is the pass's own
-    io.write(opt_.color_target, opt_.color_format, sum_opaque_ ? TargetUse::ColorAttachment : TargetUse::Storage);
-    for (int h = 0; opt_.halves && h < 2; ++h) io.write(opt_.half_targets[h], opt_.color_format, TargetUse::Storage);
+    io.write(opt_.color_target, opt_.color_format, sum_opaque_ ? TargetUse::ColorAttachment : TargetUse::Storage, true, w, h);
+    for (int k = 0; opt_.halves && k < 2; ++k) io.write(opt_.half_targets[k], opt_.color_format, TargetUse::Storage, true, w, h);
     return;
   }
   // The pass clears colour and motion itself, so their old contents are dropped.
-  io.write(opt_.color_target, opt_.color_format, TargetUse::ColorAttachment);
-  if (opt_.motion) io.write(opt_.motion_target, kMotionFormat, TargetUse::ColorAttachment);
-  if (opt_.glint) io.write(opt_.glint_target, kGlintFormat, TargetUse::ColorAttachment);
-  io.write(opt_.depth_target, depth_format_, TargetUse::DepthAttachment);
+  io.write(opt_.color_target, opt_.color_format, TargetUse::ColorAttachment, true, w, h);
+  if (opt_.motion) io.write(opt_.motion_target, kMotionFormat, TargetUse::ColorAttachment, true, w, h);
+  if (opt_.glint) io.write(opt_.glint_target, kGlintFormat, TargetUse::ColorAttachment, true, w, h);
+  io.write(opt_.depth_target, depth_format_, TargetUse::DepthAttachment, true, w, h);
 }
 
 void SurfacePass::setup(const TargetSet& t) {
-  width_ = t.width();
-  height_ = t.height();
+  width_ = opt_.width > 0 ? opt_.width : t.width();
+  height_ = opt_.height > 0 ? opt_.height : t.height();
   const int f = opt_.supersample;
   std::vector<VkImageView> views;
   if (f > 1 || sum_opaque_) {

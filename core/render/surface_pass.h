@@ -73,6 +73,15 @@ struct SurfacePassOptions {
   // glint term's part of the radiance, a = its share of the luma (passes/sand.frag; shaders without
   // glints write 0). What the glint-aware TAA options read.
   bool glint = false;
+  // The size it renders at where it is not the graph's (0: the graph's): a variant's render scale
+  // below its output resolution (its targets are this size; the TAA pass resolves them to the graph's).
+  int width = 0, height = 0;
+  // The glint models' pixel footprint (the uv derivatives) times this: below the output resolution,
+  // s makes it the display pixel's instead of the render pixel's (SURFACE_FOOTPRINT_SCALE).
+  float footprint_scale = 1.0f;
+  // The sky along each sample's jittered ray rather than the pixel centre's (passes/sky.vert): where a
+  // resolve places every sample where it was taken (rendering below the output resolution).
+  bool sky_jittered = false;
   std::string color_target = "color";
   std::string motion_target = "motion";
   std::string depth_target = "depth";

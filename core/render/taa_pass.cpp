@@ -9,10 +9,11 @@ constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct TaaPush {
   float width, height, history_valid, frame;
-  float jitter_x, jitter_y, jitter_prev_x, jitter_prev_y;
+  float jitter_x, jitter_y, jitter_prev_x, jitter_prev_y;  // output pixels
+  float render_width, render_height, scale_x, scale_y;     // scale = render size / output size
   float values[kMaxTaaParameters];
 };
-static_assert(sizeof(TaaPush) == 96, "TaaPush must match passes/taa.frag");
+static_assert(sizeof(TaaPush) == 112, "TaaPush must match passes/taa.frag");
 
 enum Binding : uint32_t { kColor = 0, kMotion, kHistoryIn, kStateIn, kState2In, kHistory2In, kGlint };
 
@@ -96,7 +97,11 @@ void TaaPass::build_pipeline(bool quad_share) {
 
 void TaaPass::setup(const TargetSet& t) {
   // Whole 2x2 quads cover an image of even width and height exactly (passes/taa.frag, TAA_QUAD_SHARE).
-  const bool quad = allow_quad_share_ && ctx_.fragment_quad_operations() && t.width() % 2 == 0 && t.height() % 2 == 0;
+  // Below the output resolution neighbouring pixels read other render texels than their offsets say:
+  // no sharing.
+  const bool native = int(t.image("color").width()) == t.width() && int(t.image("color").height()) == t.height();
+  const bool quad = allow_quad_share_ && native && ctx_.fragment_quad_operations() && t.width() % 2 == 0 &&
+                    t.height() % 2 == 0;
   if (!pipeline_.get() || quad != quad_share_) build_pipeline(quad);
   for (int slot = 0; slot < 2; ++slot) {
     VkDescriptorSet set = sets_[slot].set;
@@ -129,13 +134,18 @@ void TaaPass::setup(const TargetSet& t) {
 }
 
 void TaaPass::record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet& t) {
-  // This frame's jitter (TAA renders one sample a pixel) and that of the frame the history holds.
-  const glm::vec2 jitter = in.samples.empty() ? glm::vec2(0.0f) : glm::vec2(in.samples[0].jitter_weight);
+  // This frame's jitter (TAA renders one sample a pixel; in render pixels, given to the resolve in
+  // output pixels) and that of the frame the history holds.
+  const Image2D& color = t.image("color");
+  const glm::vec2 scale(float(color.width()) / float(t.width()), float(color.height()) / float(t.height()));
+  const glm::vec2 jitter =
+      (in.samples.empty() ? glm::vec2(0.0f) : glm::vec2(in.samples[0].jitter_weight)) / scale;
   const bool history = t.history_valid("taa.history");
   const glm::vec2 prev = history ? prev_jitter_ : jitter;
   prev_jitter_ = jitter;
   TaaPush p{float(t.width()), float(t.height()), history ? 1.0f : 0.0f, float(in.frame),
-            jitter.x, jitter.y, prev.x, prev.y, {}};
+            jitter.x, jitter.y, prev.x, prev.y,
+            float(color.width()), float(color.height()), scale.x, scale.y, {}};
   for (size_t i = 0; i < s_.values.size(); ++i) p.values[i] = float(s_.values[i]);
   const int slot = t.current_slot("taa.history");
   const VkRect2D area{{0, 0}, {uint32_t(t.width()), uint32_t(t.height())}};

@@ -32,7 +32,7 @@ const std::set<std::string>& reserved_names() {
 }
 
 const char* kResolveSyntax =
-    "// taa_resolve checks=finite,deterministic,converges,ghosting,cut,pan,flicker [fails=CHECK,...]";
+    "// taa_resolve checks=finite,deterministic,converges,ghosting,cut,pan,flicker [fails=CHECK,...] [extends=BUILT-IN]";
 const char* kParameterSyntax =
     "// taa_parameter NAME default=VALUE range=LO,HI [requires=BOOL]  or  // taa_parameter NAME default=true|false";
 const char* kOptionSyntax = "// taa_option NAME=a|b|c default=a [requires=BOOL]  (names lower_snake_case)";
@@ -40,6 +40,55 @@ const char* kOptionSyntax = "// taa_option NAME=a|b|c default=a [requires=BOOL] 
 std::string read_text(const fs::path& p) {
   if (std::optional<std::string> text = read_text_file(p)) return *text;
   throw ConfigError(p.string() + ": cannot read the TAA resolve file");
+}
+
+// requires= names a bool parameter; the macros of two declarations may not coincide (option x choice
+// y_z and option x_y choice z both give TAA_x_y_z). ConfigError naming `where`.
+void check_declaration(const TaaResolveDecl& d, const std::string& where) {
+  std::set<std::string> macros;
+  auto macro = [&](const std::string& m, const std::string& what) {
+    if (!macros.insert(m).second)
+      throw ConfigError(where + ": " + what + " gives the macro " + m + " a second time; rename it");
+  };
+  auto check_requires = [&](const std::string& who, const std::string& req) {
+    if (req.empty()) return;
+    const DeclaredParameter* r = d.parameter(req);
+    if (!r || !r->is_bool || req == who)
+      throw ConfigError(where + ": " + who + " requires=" + req + ", which is no other bool parameter of the file");
+  };
+  for (const auto& p : d.parameters) {
+    check_requires(p.name, p.requires_bool);
+    macro("TAA_ON_" + p.name, "parameter " + p.name);
+  }
+  for (const auto& o : d.options) {
+    check_requires(o.name, o.requires_bool);
+    macro("TAA_" + o.name, "option " + o.name);
+    for (const auto& c : o.choices) macro("TAA_" + o.name + "_" + c, "option " + o.name + " choice " + c);
+  }
+}
+
+// The parameters and options of `parent` first, then the file's own (a name declared twice is an error).
+void inherit(TaaResolveDecl& d, const TaaResolveDecl& parent, const std::string& where) {
+  if (!parent.extends.empty())
+    throw ConfigError(where + ": extends=" + parent.name + ", which itself extends " + parent.extends +
+                      " (one level only)");
+  std::vector<DeclaredParameter> params = parent.parameters;
+  std::vector<TaaOption> options = parent.options;
+  for (const auto& p : d.parameters) {
+    if (parent.parameter(p.name) || parent.option(p.name))
+      throw ConfigError(where + ": \"" + p.name + "\" is declared by " + parent.name + " already");
+    params.push_back(p);
+  }
+  for (const auto& o : d.options) {
+    if (parent.parameter(o.name) || parent.option(o.name))
+      throw ConfigError(where + ": \"" + o.name + "\" is declared by " + parent.name + " already");
+    options.push_back(o);
+  }
+  if (params.size() > kMaxTaaParameters)
+    throw ConfigError(where + ": more than " + std::to_string(kMaxTaaParameters) + " parameters with " + parent.name + "'s");
+  d.parameters = std::move(params);
+  d.options = std::move(options);
+  check_declaration(d, where);
 }
 
 }  // namespace
@@ -94,6 +143,8 @@ TaaResolveDecl parse_taa_resolve(const std::string& name, const std::string& whe
           for (const auto& c : list)
             if (std::find(all.begin(), all.end(), c) == all.end())
               fail("unknown check \"" + c + "\" (allowed: " + join(all) + ")", kResolveSyntax);
+        } else if (key == "extends" && is_identifier(value)) {
+          d.extends = value;
         } else {
           fail("unknown or empty field \"" + f + "\"", kResolveSyntax);
         }
@@ -145,28 +196,7 @@ TaaResolveDecl parse_taa_resolve(const std::string& name, const std::string& whe
   for (const auto& c : d.fails)
     if (std::find(d.checks.begin(), d.checks.end(), c) != d.checks.end())
       throw ConfigError(where + ": check \"" + c + "\" is both in checks= and in fails=; expected " + kResolveSyntax);
-  // requires= names a bool parameter; the macros of two declarations may not coincide
-  // (option x choice y_z and option x_y choice z both give TAA_x_y_z).
-  std::set<std::string> macros;
-  auto macro = [&](const std::string& m, const std::string& what) {
-    if (!macros.insert(m).second)
-      throw ConfigError(where + ": " + what + " gives the macro " + m + " a second time; rename it");
-  };
-  auto check_requires = [&](const std::string& who, const std::string& req) {
-    if (req.empty()) return;
-    const DeclaredParameter* r = d.parameter(req);
-    if (!r || !r->is_bool || req == who)
-      throw ConfigError(where + ": " + who + " requires=" + req + ", which is no other bool parameter of the file");
-  };
-  for (const auto& p : d.parameters) {
-    check_requires(p.name, p.requires_bool);
-    macro("TAA_ON_" + p.name, "parameter " + p.name);
-  }
-  for (const auto& o : d.options) {
-    check_requires(o.name, o.requires_bool);
-    macro("TAA_" + o.name, "option " + o.name);
-    for (const auto& c : o.choices) macro("TAA_" + o.name + "_" + c, "option " + o.name + " choice " + c);
-  }
+  if (d.extends.empty()) check_declaration(d, where);
   return d;
 }
 
@@ -176,6 +206,13 @@ TaaResolveDecl taa_resolve_from_file(const std::string& path) {
     throw ConfigError(path + ": TAA resolve file not found (a GLSL file with a taa_resolve declaration line)");
   const std::string text = read_text(path);
   TaaResolveDecl d = parse_taa_resolve(path, path, text);
+  if (!d.extends.empty()) {
+    const TaaResolveDecl* parent = find_builtin_taa_resolve(d.extends);
+    if (!parent)
+      throw ConfigError(path + ": extends=" + d.extends + " is no built-in resolve (allowed: " +
+                        join(taa_resolve_names()) + ")");
+    inherit(d, *parent, path);
+  }
   d.file = fs::absolute(path).lexically_normal().string();
   d.builtin = false;
   // Every choice of every option could be compiled: scan the file as each default compiles it (what the
@@ -206,6 +243,13 @@ const std::vector<TaaResolveDecl>& builtin_taa_resolves() {
       d.file = std::string(kTaaDir) + "/" + f.filename().string();
       d.builtin = true;
       resolves.push_back(std::move(d));
+    }
+    for (auto& r : resolves) {
+      if (r.extends.empty()) continue;
+      const auto parent = std::find_if(resolves.begin(), resolves.end(), [&](const auto& o) { return o.name == r.extends; });
+      if (parent == resolves.end())
+        throw ConfigError(dir.string() + "/" + r.name + ".glsl: extends=" + r.extends + " is no built-in resolve");
+      inherit(r, *parent, dir.string() + "/" + r.name + ".glsl");
     }
   });
   return resolves;
@@ -315,8 +359,10 @@ TaaUses TaaSettings::uses() const {
   for (auto it = std::sregex_iterator(text.begin(), text.end(), identifier); it != std::sregex_iterator(); ++it)
     words.insert(it->str());
   TaaUses u;
-  u.motion = words.count("taa_motion") || words.count("taa_distance") || words.count("taa_distance_prev");
-  u.glint = words.count("taa_glint");
+  u.motion = words.count("taa_motion") || words.count("taa_distance") || words.count("taa_distance_prev") ||
+             words.count("taa_render_motion") || words.count("taa_render_distance") ||
+             words.count("taa_render_distance_prev");
+  u.glint = words.count("taa_glint") || words.count("taa_render_glint");
   u.state = words.count("taa_state");
   u.state2 = words.count("taa_state2");
   u.history2 = words.count("taa_history2");

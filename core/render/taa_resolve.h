@@ -2,7 +2,7 @@
 //   TaaResult taa_resolve(TaaPixel p);        (shaders/taa/interface.glsl states the interface)
 // whose declaration -- conformance checks, parameters, compile-time options -- is in comment lines of
 // the file itself:
-//   // taa_resolve checks=finite,deterministic,... [fails=CHECK,...]
+//   // taa_resolve checks=finite,deterministic,... [fails=CHECK,...] [extends=BUILT-IN]
 //   // taa_parameter NAME default=V range=LO,HI [requires=BOOL]     (a float field p.NAME)
 //   // taa_parameter NAME default=true|false [requires=BOOL]        (a bool field p.NAME)
 //   // taa_option NAME=a|b|c default=a [requires=BOOL]              (compile-time: TAA_NAME == TAA_NAME_a)
@@ -41,8 +41,8 @@ struct TaaOption {
 // Which of the interface's resources a resolve reads (found in its preprocessed source, for its
 // options): the pass binds and keeps only these.
 struct TaaUses {
-  bool motion = false;    // taa_motion, taa_distance, taa_distance_prev: the surface pass writes "motion"
-  bool glint = false;     // taa_glint: the surface pass writes "glint"
+  bool motion = false;    // taa_motion, taa_distance(_prev), taa_render_motion/distance: "motion" is written
+  bool glint = false;     // taa_glint, taa_render_glint: the surface pass writes "glint"
   bool state = false;     // taa_state: "taa.state" is kept
   bool state2 = false;    // taa_state2: "taa.state2" is kept
   bool history2 = false;  // taa_history2: "taa.history2" is kept
@@ -57,6 +57,9 @@ struct TaaResolveDecl {
   bool builtin = false;
   std::vector<std::string> checks;  // which of taa_check_names() apply
   std::vector<std::string> fails;   // checks the published design fails (run, expected to fail)
+  // extends=NAME: a built-in resolve whose parameters and options this file takes first (its own follow);
+  // the file includes the built-in's and changes it through the hooks it offers (taau: falcor's).
+  std::string extends;
   std::vector<DeclaredParameter> parameters;  // in declaration order = push-constant order
   std::vector<TaaOption> options;
   std::string content_hash;  // of the file's bytes

@@ -87,7 +87,8 @@ std::string ConformanceReport::text() const {
 
 void add_conformance_command(CLI::App& app, int& exit_code, const std::string& name, const std::string& description,
                              const std::string& subject_name, const std::string& subject_help,
-                             std::function<ConformanceSuite(const ConformanceCommandOptions&)> prepare) {
+                             std::function<ConformanceSuite(const ConformanceCommandOptions&)> prepare,
+                             const std::function<void(CLI::App&)>& extra_options) {
   struct Options : ConformanceCommandOptions {
     bool json = false, validation = false;
   };
@@ -99,6 +100,7 @@ void add_conformance_command(CLI::App& app, int& exit_code, const std::string& n
   c->add_flag("--json", o->json, "print the report as JSON on stdout");
   c->add_option("--device", o->device, "Vulkan device: index or part of its name (default: lavapipe)");
   c->add_flag("--validation", o->validation, "enable Vulkan validation layers (also GLINTLAB_VALIDATION=1)");
+  if (extra_options) extra_options(*c);
   c->callback([o, prepare, &exit_code] {
     exit_code = run_guarded(
         [&] {

@@ -48,6 +48,7 @@ void apply_declaration(ConformanceCheck& c, const std::vector<std::string>& chec
 // `prepare` checks the subject and its parameters before any device is opened (ConfigError: exit 2;
 // ShaderCompileError: exit 3) and returns the suite to run on the device; the command prints the
 // report (text, or JSON with --json) and exits 1 when a check fails or the validation layer spoke.
+// `extra_options` adds the suite's own options to the command.
 struct ConformanceCommandOptions {
   std::string subject, device;
   std::vector<std::string> parameters;
@@ -55,6 +56,7 @@ struct ConformanceCommandOptions {
 using ConformanceSuite = std::function<ConformanceReport(core::VkContext&)>;
 void add_conformance_command(CLI::App& app, int& exit_code, const std::string& name, const std::string& description,
                              const std::string& subject_name, const std::string& subject_help,
-                             std::function<ConformanceSuite(const ConformanceCommandOptions&)> prepare);
+                             std::function<ConformanceSuite(const ConformanceCommandOptions&)> prepare,
+                             const std::function<void(CLI::App&)>& extra_options = {});
 
 }  // namespace glintlab

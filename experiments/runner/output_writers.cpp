@@ -204,6 +204,11 @@ void SummaryWriter::finish() {
       e["spp"] = v.samples_per_pixel();
       if (v.aa == AaMethod::Ssaa) e["ssaa_grid"] = v.ssaa_grid;
       if (v.aa == AaMethod::Taa) e["taa"] = v.taa.to_json();
+      if (v.render_scale < 1.0) {  // rendered below the output resolution (the GPU ms per pass are of both)
+        e["render_scale"] = v.render_scale;
+        e["render_resolution"] = {v.render_width(spec.width), v.render_height(spec.height)};
+        e["glint_footprint"] = v.glint_footprint;
+      }
       e["debug"] = v.debug;
       e["material"] = v.material_json;  // preset and every override (glints, energy_consistent, ...)
       if (v.truth_material) e["truth_material"] = v.truth_material_json;

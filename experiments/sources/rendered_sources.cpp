@@ -25,9 +25,12 @@ class RenderedVariant final : public ColourSource {
 
   SourceFrame frame(int k) override {
     const ExperimentSpec& spec = frames_.spec();
-    core::FrameInputs in = frames_.inputs(k);
+    // Below the output resolution the frame is rendered at the variant's render resolution (its uniforms,
+    // its samples and its jitter in render pixels).
+    const int rw = v_.render_width(spec.width), rh = v_.render_height(spec.height);
+    core::FrameInputs in = frames_.inputs(k, rw, rh);
     const std::vector<glm::vec2> offsets = variant_offsets(v_, k);
-    in.samples = core::samples_for(spec.path, k, spec.width, spec.height, offsets);
+    in.samples = core::samples_for(spec.path, k, rw, rh, offsets);
     in.jitter_px = offsets.size() == 1 ? offsets[0] : glm::vec2(0.0f);
     const auto t0 = Clock::now();
     core::FrameResult fr = setup_.graph->execute(in);
@@ -65,9 +68,17 @@ class RenderedReference final : public ColourSource {
     SourceFrame f;
     std::optional<Image> img, halves[2];
     bool corrupt = false;
-    img = cache_.load(key, &corrupt);
+    // An entry of another size than the run's is no entry of this truth (written by a defect): rendered again.
+    auto sized = [&](std::optional<Image> im) {
+      if (im && (im->width != spec.width || im->height != spec.height)) {
+        corrupt = true;
+        im.reset();
+      }
+      return im;
+    };
+    img = sized(cache_.load(key, &corrupt));
     for (int h = 0; setup_.halves && img && h < 2; ++h) {
-      halves[h] = cache_.load(half_keys[h], &corrupt);
+      halves[h] = sized(cache_.load(half_keys[h], &corrupt));
       if (!halves[h]) img.reset();
     }
     if (corrupt) {
@@ -128,6 +139,14 @@ class RenderedMotion final : public MotionSource {
 };
 
 }  // namespace
+
+core::FrameInputs RenderedFrames::inputs(int k, int width, int height) {
+  if (width == spec_.width && height == spec_.height) return inputs(k);
+  core::FrameInputs in = inputs(k);
+  in.uniforms = frame_uniforms(spec_.path.frame(k, width, height), data_.env, width, height,
+                               data_.env_texture.mips_rgba.size(), spec_.mesh.motion);
+  return in;
+}
 
 const core::FrameInputs& RenderedFrames::inputs(int k) {
   if (k != k_) {

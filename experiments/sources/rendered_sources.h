@@ -23,6 +23,8 @@ class RenderedFrames {
  public:
   RenderedFrames(const ExperimentSpec& spec, const SceneData& data) : spec_(spec), data_(data) {}
   const core::FrameInputs& inputs(int k);
+  // The same at another render resolution (a variant rendered below the output resolution).
+  core::FrameInputs inputs(int k, int width, int height);
   const ExperimentSpec& spec() const { return spec_; }
 
  private:

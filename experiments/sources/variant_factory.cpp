@@ -3,6 +3,7 @@
 #include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
 #include "core/render/taa_pass.h"
+#include "core/render/upscale_pass.h"
 
 namespace glintlab {
 
@@ -12,6 +13,13 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
   r.graph = std::make_unique<core::FrameGraph>(ctx, width, height);
   core::SurfacePassOptions o;
   o.program = program;
+  const bool scaled = v.render_scale < 1.0;
+  if (scaled) {  // the surface pass renders below the output resolution; a resolve or an upscale fills it
+    o.width = v.render_width(width);
+    o.height = v.render_height(height);
+    if (v.glint_footprint == "display") o.footprint_scale = float(v.render_scale);
+    o.sky_jittered = true;
+  }
   // One sample per frame (no AA, TAA, a 1x1 SSAA grid): one opaque draw with
   // depth test LESS instead of a depth pre-pass and an EQUAL shading pass, the
   // same nearest surface (core/render/surface_pass.h).
@@ -21,6 +29,10 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
     case AaMethod::Ssaa:  // one geometry pass per sample: a jittered stratified pattern (finer than an ordered grid)
       r.output = "color";
       r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
+      if (scaled) {
+        r.graph->add(std::make_unique<core::UpscalePass>(ctx, "color", "upscaled"));
+        r.output = "upscaled";
+      }
       break;
     case AaMethod::Taa:
       auto taa = std::make_unique<core::TaaPass>(ctx, v.taa);
@@ -88,7 +100,7 @@ std::vector<glm::vec2> variant_offsets(const VariantSpec& v, int k) {
   switch (v.aa) {
     case AaMethod::Ssaa: return v.ssaa_grid <= 1 ? std::vector<glm::vec2>{glm::vec2(0.0f)}
                                                  : core::stratified_offsets(v.ssaa_grid, kSsaaPatternSeed);
-    case AaMethod::Taa: return {core::jitter_offset(v.taa.jitter, k)};
+    case AaMethod::Taa: return {core::jitter_offset(v.taa.jitter, k, v.render_scale)};
     case AaMethod::None: break;
   }
   return {glm::vec2(0.0f)};

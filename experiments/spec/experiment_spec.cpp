@@ -60,8 +60,8 @@ std::string relative_to(const std::string& file, const std::string& path);
 // flat form {PARAMETER or OPTION of falcor: ...}; "jitter" in every form. Each value is checked against
 // the resolve's declaration: its range, its choices, and "requires=" (a value set where the bool it
 // requires is false is an error).
-core::TaaSettings parse_taa(JsonReader& r, const std::string& file) {
-  const core::JitterSequence jitter = get_named(r, "jitter", core::kJitterNames, core::JitterSequence::Halton16);
+core::TaaSettings parse_taa(JsonReader& r, const std::string& file, core::JitterSequence default_jitter) {
+  const core::JitterSequence jitter = get_named(r, "jitter", core::kJitterNames, default_jitter);
   if (r.has("name") && r.has("file")) r.fail("file", "give either \"name\" (a built-in resolve) or \"file\", not both");
   core::TaaResolveDecl decl;
   if (r.has("file")) {
@@ -93,6 +93,13 @@ core::TaaSettings parse_taa(JsonReader& r, const std::string& file) {
   r.finish();
   return t;
 }
+
+}  // namespace
+
+int VariantSpec::render_width(int w) const { return std::max(1, int(std::lround(render_scale * w))); }
+int VariantSpec::render_height(int h) const { return std::max(1, int(std::lround(render_scale * h))); }
+
+namespace {
 
 // A path given in an experiment file is relative to the file's folder.
 std::string relative_to(const std::string& file, const std::string& path) {
@@ -260,12 +267,21 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     v.ssaa_grid = vr.get_int("ssaa_grid", v.aa == AaMethod::Ssaa ? 2 : 1, 1, 16);
     if (v.aa != AaMethod::Ssaa && vr.has("ssaa_grid") && v.ssaa_grid != 1)
       vr.fail("ssaa_grid", "only applies to \"aa\": \"ssaa\"");
+    v.render_scale = vr.get_number("render_scale", 1.0, 0.25, 1.0);
+    v.glint_footprint = vr.get_enum("glint_footprint", "render", {"render", "display"});
+    if (vr.has("glint_footprint") && v.render_scale == 1.0)
+      vr.fail("glint_footprint", "only applies with \"render_scale\" below 1 (the render pixel is then wider than the "
+                                 "display pixel)");
+    // Below scale 1 a TAA's jitter cycles through 8 / s^2 phases (FSR 2's count) unless the variant says otherwise.
+    const core::JitterSequence default_jitter =
+        v.render_scale < 1.0 ? core::JitterSequence::HaltonFsr2 : core::JitterSequence::Halton16;
+    if (v.aa == AaMethod::Taa) v.taa.jitter = default_jitter;
     if (vr.has("taa")) {
       if (v.aa != AaMethod::Taa) vr.fail("taa", "only applies to \"aa\": \"taa\"");
       v.taa_json = vr.raw("taa");
       if (!v.taa_json.is_object()) vr.fail("taa", "expected an object of TAA options");
       JsonReader tr(v.taa_json, file, vr.key_path("taa"));
-      v.taa = parse_taa(tr, file);
+      v.taa = parse_taa(tr, file, default_jitter);
     }
     v.debug = vr.get_enum("debug", "final", core::SandParams::debug_output_names());
     // The experiment's material with the variant's overrides of `key`, key by key at every depth (a JSON

@@ -72,7 +72,18 @@ struct VariantSpec {
   std::string frames;            // a frame source: the SEQ its frames are read from (experiments/sources/sequence.h)
   std::string frames_space;      // its OCIO space ("" = the files' tag, else scene_linear)
 
+  // "render_scale" s in [0.25, 1]: the frame graph renders at round(s W) x round(s H) and resolves to the
+  // output W x H: a TAA variant's resolve reconstructs it (temporal upscaling; its jitter then defaults
+  // to halton_fsr2), any other variant is upscaled bilinearly (a spatial upscale).
+  double render_scale = 1.0;
+  // "glint_footprint": the pixel footprint the glint models filter over at s < 1: the render pixel
+  // ("render", 1/s output pixels wide) or the display pixel ("display": the render footprint times s,
+  // as FSR 2's mip-bias guidance does for textures).
+  std::string glint_footprint = "render";
   int samples_per_pixel() const { return aa == AaMethod::Ssaa ? ssaa_grid * ssaa_grid : 1; }
+  // The render resolution of an output of w x h: round(s w) x round(s h), at least 1.
+  int render_width(int w) const;
+  int render_height(int h) const;
 };
 
 struct ReferenceSpec {

@@ -9,8 +9,8 @@
 //   ghosting       a sphere crossing the sky before a static camera: what is left of the sphere's
 //                  contrast 4 frames after it left a pixel (sum |resolve - current| / sum |sphere - sky|;
 //                  bound 5 %)
-//   cut            the first frame after a camera cut against that frame's own sample, relative to the
-//                  frame's maximum (bound 1e-4)
+//   cut            the first frame after a camera cut against the resolve's first frame of that shot
+//                  rendered afresh (no history), relative to the frame's maximum (bound 1e-4)
 //   pan            a steady pan over sand: pooled RMS error of 2x2-pixel means against the truth, over
 //                  that of one sample per pixel (whose aliasing mostly averages out at 2 px: what a
 //                  resolve adds there is blur, lag and ghosts; bound 1.25), 4x4 supersampling beside it
@@ -38,8 +38,12 @@ core::TaaSettings taa_test_settings(const std::string& resolve_or_file, const st
 // Runs every check on `ctx` and, for the checks measured by runs, on `device` (the same device, as
 // --device names it); `work_dir` holds the runs' folders (a fresh folder, removed by the caller). The
 // truths are cached beside the SPIR-V cache (content-keyed, shared between runs of the suite).
+// `render_scale` below 1: every scene is rendered at that scale and resolved to its output resolution
+// (jitter halton_fsr2; converges keeps R2), against the same truths and SSAA at the output resolution;
+// "one sample per pixel" (pan, flicker) is then one sample per render texel upscaled bilinearly: the
+// resolve's own input, spatially upscaled.
 ConformanceReport run_taa_test(core::VkContext& ctx, const core::TaaSettings& s, const std::string& work_dir,
-                               const std::string& device);
+                               const std::string& device, double render_scale = 1.0);
 
 void add_taa_test_command(CLI::App& app, int& exit_code);
 

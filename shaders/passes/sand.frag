@@ -49,6 +49,9 @@ layout(location = 0) out vec4 out_color;
 #if SURFACE_MOTION
 layout(location = 1) out vec4 out_motion;  // common/motion.glsl
 #endif
+#ifndef SURFACE_FOOTPRINT_SCALE
+#define SURFACE_FOOTPRINT_SCALE 1.0
+#endif
 #ifndef SURFACE_GLINT
 #define SURFACE_GLINT 0
 #endif
@@ -71,7 +74,9 @@ void main() {
   // A sample of a supersampled frame stands for 1/N of the pixel (N = 1/weight
   // stratified samples): its footprint is the pixel's uv extent times 1/sqrt(N),
   // so a filtered glint model integrates its own stratum, not the whole pixel.
-  float footprint = sqrt(sample_jitter_weight.z);
+  // SURFACE_FOOTPRINT_SCALE (core/render/surface_pass.h): s for a display-pixel footprint below the
+  // output resolution.
+  float footprint = sqrt(sample_jitter_weight.z) * SURFACE_FOOTPRINT_SCALE;
   SandSurface s = sand_surface(v_x_obj, v_x, n, wo, dist, v_t, v_uv, dFdx(v_uv) * footprint, dFdy(v_uv) * footprint);
   s.dwo_dx = dFdx(wo) * footprint;
   s.dwo_dy = dFdy(wo) * footprint;

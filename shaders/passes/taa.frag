@@ -63,12 +63,15 @@ layout(location = TAA_LOCATION_HISTORY2) out vec4 taa_out_history2;
 
 layout(push_constant) uniform TaaPush {
   vec4 taa_size_frame;   // width, height, history valid (0/1), frame
-  vec4 taa_jitters;      // jitter, jitter_prev (pixels)
+  vec4 taa_jitters;      // jitter, jitter_prev (output pixels)
+  vec4 taa_render;       // render width, height; render size / output size (x, y)
   vec4 taa_values[4];    // the parameters, in declaration order
 };
 
 ivec2 taa_g_size;
 ivec2 taa_g_pixel;
+ivec2 taa_g_rsize;   // the render resolution of the inputs (colour, motion, glint layer)
+vec2 taa_g_scale;    // render size / output size, in (0, 1]
 
 float taa_parameter_value(int i) { return taa_values[i / 4][i % 4]; }
 
@@ -116,16 +119,36 @@ vec3 taa_filtered(sampler2D t, vec2 pos, int filter_kind) {
          w3.y * taa_catmull_rom_row(t, down, taa_texel(t, down).rgb, taa_texel(t, down + ivec2(1, 0)).rgb, wx);
 }
 
-vec3 taa_current(ivec2 offset) { return taa_texel(taa_color_tex, taa_g_pixel + offset).rgb; }
+// This frame's jitter in render pixels (the push constants hold it in output pixels).
+vec2 p_jitter_render() { return taa_jitters.xy * taa_g_scale; }
+// A render-resolution input at a texel, clamped to the render image.
+vec4 taa_rtexel(sampler2D t, ivec2 q) { return texelFetch(t, clamp(q, ivec2(0), taa_g_rsize - 1), 0); }
+ivec2 taa_render_size() { return taa_g_rsize; }
+vec2 taa_render_scale() { return taa_g_scale; }
+// The render texel whose area holds output position pos (at scale 1: the pixel itself).
+ivec2 taa_render_texel(vec2 pos) {
+  return ivec2(clamp(floor(taa_safe_pos(pos) * taa_g_scale), vec2(0.0), vec2(taa_g_rsize - 1)));
+}
+// The render texel under the centre of output pixel q.
+ivec2 taa_under(ivec2 q) { return taa_render_texel(vec2(q) + 0.5); }
+// Where the sample of render texel i was taken, in output pixels: the camera of this frame sees at a
+// texel centre c the point whose unjittered position is c - jitter (core/scene/camera.h).
+vec2 taa_render_sample(ivec2 texel) { return (vec2(texel) + 0.5 - p_jitter_render()) / taa_g_scale; }
+vec3 taa_render_color(ivec2 texel) { return taa_rtexel(taa_color_tex, texel).rgb; }
+vec3 taa_current(ivec2 offset) { return taa_rtexel(taa_color_tex, taa_under(taa_g_pixel + offset)).rgb; }
 vec3 taa_history(vec2 pos, int filter_kind) { return taa_filtered(taa_history_tex, pos, filter_kind); }
 bool taa_in_frame(vec2 pos) {
   return all(greaterThanEqual(pos, vec2(0.0))) && all(lessThanEqual(pos, vec2(taa_g_size))) &&
          !any(isnan(pos)) && !any(isinf(pos));
 }
 #if TAA_USES_MOTION
-vec2 taa_motion(ivec2 offset) { return taa_texel(taa_motion_tex, taa_g_pixel + offset).xy; }
-float taa_distance(ivec2 offset) { return taa_texel(taa_motion_tex, taa_g_pixel + offset).z; }
-float taa_distance_prev(ivec2 offset) { return taa_texel(taa_motion_tex, taa_g_pixel + offset).w; }
+// Motion in render pixels inside, in output pixels here (at scale 1 the same bits).
+vec2 taa_render_motion(ivec2 texel) { return taa_rtexel(taa_motion_tex, texel).xy / taa_g_scale; }
+float taa_render_distance(ivec2 texel) { return taa_rtexel(taa_motion_tex, texel).z; }
+float taa_render_distance_prev(ivec2 texel) { return taa_rtexel(taa_motion_tex, texel).w; }
+vec2 taa_motion(ivec2 offset) { return taa_render_motion(taa_under(taa_g_pixel + offset)); }
+float taa_distance(ivec2 offset) { return taa_rtexel(taa_motion_tex, taa_under(taa_g_pixel + offset)).z; }
+float taa_distance_prev(ivec2 offset) { return taa_rtexel(taa_motion_tex, taa_under(taa_g_pixel + offset)).w; }
 #endif
 #if TAA_USES_STATE
 vec4 taa_state(vec2 pos) { return taa_nearest(taa_state_tex, pos); }
@@ -137,7 +160,8 @@ vec4 taa_state2(vec2 pos) { return taa_nearest(taa_state2_tex, pos); }
 vec3 taa_history2(vec2 pos, int filter_kind) { return taa_filtered(taa_history2_tex, pos, filter_kind); }
 #endif
 #if TAA_USES_GLINT
-vec4 taa_glint(ivec2 offset) { return taa_texel(taa_glint_tex, taa_g_pixel + offset); }
+vec4 taa_render_glint(ivec2 texel) { return taa_rtexel(taa_glint_tex, texel); }
+vec4 taa_glint(ivec2 offset) { return taa_rtexel(taa_glint_tex, taa_under(taa_g_pixel + offset)); }
 #endif
 
 #include "TAA_RESOLVE_FILE"
@@ -145,6 +169,8 @@ vec4 taa_glint(ivec2 offset) { return taa_texel(taa_glint_tex, taa_g_pixel + off
 void main() {
   taa_g_size = ivec2(taa_size_frame.xy);
   taa_g_pixel = ivec2(gl_FragCoord.xy);  // the viewport is the image
+  taa_g_rsize = ivec2(taa_render.xy);
+  taa_g_scale = taa_render.zw;
   TaaPixel p;
   p.pixel = taa_g_pixel;
   p.history_valid = taa_size_frame.z > 0.5;
@@ -153,7 +179,7 @@ void main() {
   p.frame = uint(taa_size_frame.w);
   TAA_PARAMETER_VALUES
   TaaResult r = taa_resolve(p);
-  taa_out_color = vec4(r.color, taa_texel(taa_color_tex, taa_g_pixel).a);
+  taa_out_color = vec4(r.color, taa_rtexel(taa_color_tex, taa_under(taa_g_pixel)).a);
   taa_out_history = vec4(r.history, 0.0);
 #if TAA_USES_STATE
   taa_out_state = r.state;

@@ -85,6 +85,32 @@
 #define FALCOR_GLINT (TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock)
 #define FALCOR_STATE (TAA_ON_disocclusion || TAA_ON_accumulate)
 
+// Hooks for a resolve that extends this one (taa_resolve extends=falcor; taau.glsl): it defines them
+// before including this file. FALCOR_BEGIN(px) runs first in taa_resolve; the current colour and
+// glint layer at the pixel, those of neighbour o (the 3x3 box, the motion to follow), and the weight
+// this frame's sample adds to the count n of `accumulate` (1: one sample at the pixel).
+#ifndef FALCOR_BEGIN
+#define FALCOR_BEGIN(px)
+#endif
+#ifndef FALCOR_CURRENT_RGB
+#define FALCOR_CURRENT_RGB() taa_current(ivec2(0))
+#endif
+#ifndef FALCOR_CURRENT_GLINT
+#define FALCOR_CURRENT_GLINT() taa_glint(ivec2(0))
+#endif
+#ifndef FALCOR_NEIGHBOUR_RGB
+#define FALCOR_NEIGHBOUR_RGB(o) taa_current(o)
+#endif
+#ifndef FALCOR_NEIGHBOUR_GLINT
+#define FALCOR_NEIGHBOUR_GLINT(o) taa_glint(o)
+#endif
+#ifndef FALCOR_NEIGHBOUR_MOTION
+#define FALCOR_NEIGHBOUR_MOTION(o) vec4(taa_motion(o), taa_distance(o), taa_distance_prev(o))
+#endif
+#ifndef FALCOR_SAMPLE_WEIGHT
+#define FALCOR_SAMPLE_WEIGHT() 1.0
+#endif
+
 float luma(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }  // Rec. 709 luma of linear rgb
 
 // HDR mapping (Karis 2014; FSR2) and its inverse; both keep colours >= 0 finite.
@@ -134,16 +160,16 @@ float space_luma(vec3 y) {
 // The colour steps 1-4 resolve: the frame's, or with the layers separated, the frame's without its glints.
 vec3 resolved_rgb(ivec2 o) {
 #if TAA_ON_glint_layer
-  return taa_current(o) - taa_glint(o).rgb;
+  return FALCOR_NEIGHBOUR_RGB(o) - FALCOR_NEIGHBOUR_GLINT(o).rgb;
 #else
-  return taa_current(o);
+  return FALCOR_NEIGHBOUR_RGB(o);
 #endif
 }
 
 // A colour as the neighbourhood box sees it: HDR-mapped, in box space.
 vec3 box_colour(vec3 c) { return to_space(hdr_forward(max(c, vec3(0.0)))); }
 
-vec4 motion_texel(ivec2 o) { return vec4(taa_motion(o), taa_distance(o), taa_distance_prev(o)); }
+vec4 motion_texel(ivec2 o) { return FALCOR_NEIGHBOUR_MOTION(o); }
 
 #if TAA_QUAD_SHARE
 // The 3x3 neighbourhood of every pixel of a 2x2 quad lies in the quad's 4x4 block of texels: each pixel
@@ -422,7 +448,7 @@ vec3 resolve_glint_layer(vec2 q, bool valid, vec3 g_cur, float n, float glint_al
     vec3 g_lo = g_cur, g_hi = g_cur;
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
-        vec3 gs = taa_glint(ivec2(dx, dy)).rgb;
+        vec3 gs = FALCOR_NEIGHBOUR_GLINT(ivec2(dx, dy)).rgb;
         g_lo = min(g_lo, gs);
         g_hi = max(g_hi, gs);
       }
@@ -430,7 +456,7 @@ vec3 resolve_glint_layer(vec2 q, bool valid, vec3 g_cur, float n, float glint_al
 #endif
     float ag = glint_alpha;
 #if TAA_ON_accumulate
-    ag = max(ag, 1.0 / n);
+    ag = max(ag, FALCOR_SAMPLE_WEIGHT() / n);
 #endif
     if (finite3(g_hist)) g_out = mix(g_hist, g_cur, ag);
   }
@@ -439,13 +465,14 @@ vec3 resolve_glint_layer(vec2 q, bool valid, vec3 g_cur, float n, float glint_al
 #endif
 
 TaaResult taa_resolve(TaaPixel px) {
+  FALCOR_BEGIN(px)
   ivec2 p = px.pixel;
   bool valid = px.history_valid;
 
   // ---- current neighbourhood (HDR-mapped, in box space) and motion
-  vec3 centre_px = taa_current(ivec2(0));
+  vec3 centre_px = FALCOR_CURRENT_RGB();
 #if FALCOR_GLINT
-  vec4 glint_px = taa_glint(ivec2(0));
+  vec4 glint_px = FALCOR_CURRENT_GLINT();
   float share = clamp(glint_px.a, 0.0, 1.0);  // NaN -> 0: no glint-aware change where the layer is undefined
 #endif
 #if TAA_ON_glint_layer
@@ -471,9 +498,12 @@ TaaResult taa_resolve(TaaPixel px) {
 
   float n = 1.0;
 #if TAA_ON_accumulate
-  // The frames accumulated at the reprojected point (nearest texel), this one included.
-  if (valid) n = min(taa_state(q).y, 1e6) + 1.0;
-  if (!(n >= 1.0)) n = 1.0;  // NaN in the history: restart the count
+  // The frames accumulated at the reprojected point (nearest texel), this one included (each frame's
+  // sample counts FALCOR_SAMPLE_WEIGHT: 1 here).
+  float w_sample = FALCOR_SAMPLE_WEIGHT();
+  n = w_sample;
+  if (valid) n = min(taa_state(q).y, 1e6) + w_sample;
+  if (!(n >= w_sample)) n = w_sample;  // NaN in the history: restart the count
 #endif
   // ---- steps 3 and 4: rectify and blend
   vec3 result = cur;
@@ -486,7 +516,9 @@ TaaResult taa_resolve(TaaPixel px) {
     lumas = anti_flicker(q, cur, raw, h, a);
 #endif
 #if TAA_ON_accumulate
-    a = max(a, 1.0 / n);
+    // (a frame whose sample weight w is below 1 takes only that share of alpha' too, and one of weight 0,
+    // which saw nothing of the pixel, leaves the history as it is)
+    a = max(a * w_sample, w_sample / max(n, 1e-6));
 #endif
 #if TAA_ON_glint_lock
     if (share > 0.5 && space_luma(raw) >= 0.5 * space_luma(cur)) h = raw;

@@ -13,14 +13,18 @@
 // experiment file may set it only where the bool parameter B is true.
 //
 // Units: pixels of the output image, continuous coordinates with pixel centres at +0.5 (pixel p covers
-// [p, p + 1)). The pass runs taa_resolve once per output pixel, every frame.
+// [p, p + 1)). The pass runs taa_resolve once per output pixel, every frame. The frame may be rendered
+// below the output resolution (a variant's "render_scale" s): its colour, motion and glint layer are
+// then render texels, each 1/s output pixels wide; every accessor but the taa_render_* ones reads the
+// render texel under the output pixel's centre and gives motion and jitter in output pixels, so a
+// resolve written for s = 1 runs unchanged (and at s = 1 every render texel is its pixel).
 //
 // TaaPixel p:
 //   ivec2 pixel         the output pixel
 //   bool history_valid  false on the first frame, after a reset and after a camera cut: every
 //                       taa_history / taa_state read is then meaningless
-//   vec2 jitter         this frame's sub-pixel jitter (pixels): the current sample of pixel p was taken
-//                       at p + 0.5 + jitter
+//   vec2 jitter         this frame's sub-pixel jitter (output pixels): the camera sees at a texel centre
+//                       c the point whose unjittered position is c - jitter (core/scene/camera.h)
 //   vec2 jitter_prev    the jitter of the frame the history holds (= jitter when there is none)
 //   uint frame          the frame's index in the camera path
 //   and every declared parameter, p.NAME
@@ -47,13 +51,20 @@
 //   bool  taa_in_frame(vec2 pos)         pos is finite and within [0, width] x [0, height]
 //   vec4  taa_glint(ivec2 offset)        the surface pass's glint layer: rgb = the glint term's part of
 //                                        the colour, a = its share of the luma (sand/sand.glsl)
-//   ivec2 taa_size()                     the image size
+//   ivec2 taa_size()                     the output image size
+// Upscaling (render texels; the same as the above at s = 1):
+//   ivec2 taa_render_size(), vec2 taa_render_scale()   the render resolution, render size / output size
+//   ivec2 taa_render_texel(vec2 pos)     the render texel whose area holds output position pos
+//   vec2  taa_render_sample(ivec2 texel) where that texel's sample was taken this frame, output pixels
+//   vec3  taa_render_color(ivec2 texel), vec2 taa_render_motion(ivec2 texel) (output pixels),
+//   float taa_render_distance(ivec2 texel), float taa_render_distance_prev(ivec2 texel),
+//   vec4 taa_render_glint(ivec2 texel)
 // Reads outside the image are clamped to its edge; positions that are not finite read texel (0, 0).
 // Host capability: TAA_QUAD_SHARE is 1 where every 2x2 quad of fragments lies whole in the image and the
 // device has quad subgroup operations in fragment shaders (GL_KHR_shader_subgroup_quad is enabled then).
 //
 // A resolve may not declare resources, outputs or work-group memory, nor discard: it reads what the
-// accessors give. Rendering below the output resolution will add accessors; none of the above changes.
+// accessors give.
 #ifndef GLINTLAB_TAA_INTERFACE_GLSL
 #define GLINTLAB_TAA_INTERFACE_GLSL
 
@@ -95,5 +106,14 @@ vec4 taa_state2(vec2 pos);
 bool taa_in_frame(vec2 pos);
 vec4 taa_glint(ivec2 offset);
 ivec2 taa_size();
+ivec2 taa_render_size();
+vec2 taa_render_scale();
+ivec2 taa_render_texel(vec2 pos);
+vec2 taa_render_sample(ivec2 texel);
+vec3 taa_render_color(ivec2 texel);
+vec2 taa_render_motion(ivec2 texel);
+float taa_render_distance(ivec2 texel);
+float taa_render_distance_prev(ivec2 texel);
+vec4 taa_render_glint(ivec2 texel);
 
 #endif

@@ -44,6 +44,7 @@
 #include "core/render/sample_schedule.h"
 #include "core/render/surface_pass.h"
 #include "core/render/taa_pass.h"
+#include "core/render/taa_resolve.h"
 #include "core/scene/camera_path.h"
 #include "core/scene/mesh.h"
 #include "core/vk/vk_context.h"
@@ -638,6 +639,25 @@ int bench(int argc, char** argv) {
     std::printf("\nTAA at %dx%d: surface pass (with motion vectors) %.2f ms, TAA resolve %.2f ms (%.3f of the surface "
                 "pass)\n",
                 w, h, median(per["surface"]), median(per["taa"]), median(per["taa"]) / median(per["surface"]));
+    // Temporal upscaling at render scale 1/2 (taau): the surface pass at (w/2)x(h/2), the resolve at w x h,
+    // in the same run as the native rows above.
+    VariantSpec half = spec.variants[1];
+    half.render_scale = 0.5;
+    half.taa = core::TaaSettings(*core::find_builtin_taa_resolve("taau"));
+    half.taa.jitter = core::JitterSequence::HaltonFsr2;
+    RenderSetup up = build_variant(ctx, scene, w, h, half, core::sand_program(base, data.range, core::ProgramRole::Variant));
+    const int rw = half.render_width(w), rh = half.render_height(h);
+    core::FrameInputs hin = inputs(spec, data, rw, rh, {core::jitter_offset(half.taa.jitter, 0, 0.5)});
+    std::map<std::string, std::vector<double>> hper;
+    for (int i = 0; i < frames + 2; ++i) {
+      core::FrameResult r = up.graph->execute(hin);
+      if (i >= 2)
+        for (const auto& t : r.timings) hper[t.pass].push_back(t.gpu_ms);
+    }
+    std::printf("taau at render scale 1/2 (%dx%d -> %dx%d): surface pass %.2f ms (%.3f of native), resolve %.2f ms "
+                "(%.3f of native's)\n",
+                rw, rh, w, h, median(hper["surface"]), median(hper["surface"]) / median(per["surface"]),
+                median(hper["taa"]), median(hper["taa"]) / median(per["taa"]));
   }
 
   // ---- 4. metrics of one variant frame

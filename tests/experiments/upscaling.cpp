@@ -1,0 +1,156 @@
+// Temporal upscaling: a variant's "render_scale" renders its frame graph below the output resolution
+// and a resolve (taau: falcor's with an upsampling reconstruction) or a spatial upscale brings it to
+// the output, where it is measured against the truth at the output resolution.
+#include "core/material/program.h"
+#include "core/render/sample_schedule.h"
+#include "core/util/json_check.h"
+#include "experiments/runner/runner.h"
+#include "experiments/sources/rendered_sources.h"
+#include "experiments/spec/experiment_spec.h"
+#include "experiments/spec/scene_setup.h"
+#include "metrics/color/color_manager.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/user_file_run.h"
+#include "tests/support/vk_test_util.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+namespace fs = std::filesystem;
+using namespace glintlab;
+using json = nlohmann::json;
+
+namespace {
+
+json sand_scene(int w, int h, const json& path) {
+  return {{"name", "upscaling-test"},
+          {"resolution", {w, h}},
+          {"scene",
+           {{"mesh", {{"type", "wavy"}, {"size", 20}, {"tessellation", 128}, {"amplitude", 0.5}, {"wavelength", 3}}},
+            {"sky",
+             {{"turbidity", 3}, {"sky_intensity", 0.5}, {"sun_elevation_deg", 25}, {"sun_azimuth_deg", 30},
+              {"sun_intensity", 6}}}}},
+          {"camera_path", path},
+          {"material",
+           {{"preset", "thesis-hdri-match"}, {"noise_scale", 400}, {"glint_sigma", 0.002}, {"I_glints", {20, 20, 20}},
+            {"sigmoid_a", 2}, {"sigmoid_b", 1000}}},
+          {"output", {{"exr", false}, {"png", false}}}};
+}
+
+}  // namespace
+
+TEST(Upscaling, RenderScaleIsCheckedAndChoosesFsr2sJitter) {
+  EXPECT_EQ(core::fsr2_jitter_phases(1 / 1.5), 18);  // FSR 2's modes: Quality, Balanced, Performance, Ultra
+  EXPECT_EQ(core::fsr2_jitter_phases(1 / 1.7), 23);
+  EXPECT_EQ(core::fsr2_jitter_phases(0.5), 32);
+  EXPECT_EQ(core::fsr2_jitter_phases(1 / 3.0), 72);
+  EXPECT_EQ(core::jitter_offset(core::JitterSequence::HaltonFsr2, 32, 0.5),
+            core::jitter_offset(core::JitterSequence::HaltonFsr2, 0, 0.5))
+      << "32 phases at 1/2";
+  EXPECT_NE(core::jitter_offset(core::JitterSequence::HaltonFsr2, 16, 0.5),
+            core::jitter_offset(core::JitterSequence::HaltonFsr2, 0, 0.5));
+
+  json e = sand_scene(64, 36, {{"type", "static"}, {"fps", 30}, {"frames", 2}, {"position", {-4.5, 0.9, -0.5}},
+                              {"target", {3, 0, 1}}, {"fov", 40}});
+  e["variants"] = json::array({json{{"name", "up"}, {"aa", "taa"}, {"render_scale", 0.5}},
+                               json{{"name", "up-r2"}, {"aa", "taa"}, {"render_scale", 0.5}, {"taa", {{"jitter", "r2"}}}},
+                               json{{"name", "native"}, {"aa", "taa"}}});
+  const ExperimentSpec s = ExperimentSpec::from_json(e, "inline-test");
+  EXPECT_EQ(s.variants[0].taa.jitter, core::JitterSequence::HaltonFsr2) << "the default below scale 1";
+  EXPECT_EQ(s.variants[1].taa.jitter, core::JitterSequence::R2) << "any sequence selectable";
+  EXPECT_EQ(s.variants[2].taa.jitter, core::JitterSequence::Halton16) << "native: Falcor's";
+  EXPECT_EQ(s.variants[0].render_width(640), 320);
+  EXPECT_EQ(s.variants[0].render_height(360), 180);
+  auto rejected = [&](const json& v, const std::string& want) {
+    json bad = e;
+    bad["variants"] = json::array({v});
+    try {
+      ExperimentSpec::from_json(bad, "inline-test");
+      ADD_FAILURE() << "accepted " << v.dump();
+    } catch (const ConfigError& err) {
+      EXPECT_NE(std::string(err.what()).find(want), std::string::npos) << err.what();
+    }
+  };
+  rejected({{"name", "x"}, {"render_scale", 0.2}}, "variants[0].render_scale");
+  rejected({{"name", "x"}, {"render_scale", 1.5}}, "variants[0].render_scale");
+  rejected({{"name", "x"}, {"glint_footprint", "display"}}, "only applies with \"render_scale\" below 1");
+  rejected({{"name", "x"}, {"render_scale", 0.5}, {"glint_footprint", "pixel"}}, "\"render\", \"display\"");
+}
+
+// At render scale 1 taau renders what falcor renders with the same choices (there is nothing to
+// upsample), bit for bit, frame after frame of a moving orbit, with the glint-aware options too.
+TEST(Upscaling, TaauAtScaleOneRendersWhatFalcorRenders) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  json e = sand_scene(64, 36, {{"type", "orbit"}, {"fps", 30}, {"frames", 8}, {"center", {0, 0, 0}},
+                              {"radius", 3.6}, {"height", 1.7}, {"start_deg", 180}, {"end_deg", 194}, {"fov", 40}});
+  const json options = {{"dering", true}, {"glint_layer", true}, {"glint_clamp", "minmax"}, {"accumulate", true},
+                        {"disocclusion", true}};
+  e["variants"] = json::array({json{{"name", "falcor"}, {"aa", "taa"}, {"taa", {{"name", "falcor"}, {"parameters", options}}}},
+                               json{{"name", "taau"}, {"aa", "taa"}, {"taa", {{"name", "taau"}, {"parameters", options}}}}});
+  const ExperimentSpec spec = ExperimentSpec::from_json(e, "inline-test");
+  const SceneData data = build_scene(spec, metrics::ColorManager());
+  core::SceneGpu scene(ctx, data.mesh, data.env_texture);
+  RenderedFrames frames(spec, data);
+  std::unique_ptr<ColourSource> src[2];
+  for (int i = 0; i < 2; ++i)
+    src[i] = rendered_variant(ctx, scene, spec.variants[size_t(i)],
+                              core::sand_program(spec.variants[size_t(i)].material, data.range, core::ProgramRole::Variant),
+                              frames);
+  size_t differ = 0, lit = 0;
+  for (int k = 0; k < spec.frames; ++k) {
+    const SourceFrame a = src[0]->frame(k), b = src[1]->frame(k);
+    ASSERT_EQ(a.image->data.size(), b.image->data.size());
+    for (size_t j = 0; j < a.image->data.size(); ++j) {
+      differ += a.image->data[j] != b.image->data[j];
+      lit += a.image->data[j] > 0.0f;
+    }
+  }
+  EXPECT_GT(lit, size_t(8 * 64 * 36)) << "the frames show something";
+  EXPECT_EQ(differ, 0u);
+}
+
+// A static view at render scale 1/2: 64 frames of an accumulating taau (16 samples per output pixel)
+// end within 1.25x the CIEDE2000 of 4x4 supersampling at the output resolution; a spatial upscale of
+// the half-resolution frame cannot recover what it never sampled (one sample per render texel, or 4x4
+// supersampled at half resolution), nor can falcor's resolve fed the render texel under each pixel.
+TEST(Upscaling, AnAccumulatingTaauAtHalfScaleRecoversOutputResolutionDetail) {
+  test::TempDir dir("upscaling");
+  json e = sand_scene(96, 54, {{"type", "static"}, {"fps", 30}, {"frames", 64}, {"position", {-4.5, 0.9, -0.5}},
+                              {"target", {3, 0, 1}}, {"fov", 40}});
+  const json acc = {{"clamp", "none"}, {"feedback", "fixed"}, {"alpha", 0.015625}, {"accumulate", true}};
+  e["variants"] = json::array(
+      {json{{"name", "ssaa-4x4"}, {"aa", "ssaa"}, {"ssaa_grid", 4}},
+       json{{"name", "taau"}, {"aa", "taa"}, {"render_scale", 0.5}, {"taa", {{"name", "taau"}, {"jitter", "r2"}, {"parameters", acc}}}},
+       json{{"name", "falcor"}, {"aa", "taa"}, {"render_scale", 0.5}, {"taa", {{"name", "falcor"}, {"jitter", "r2"}, {"parameters", acc}}}},
+       json{{"name", "one-sample-upscaled"}, {"render_scale", 0.5}},
+       json{{"name", "ssaa-4x4-upscaled"}, {"aa", "ssaa"}, {"ssaa_grid", 4}, {"render_scale", 0.5}}});
+  e["reference"] = {{"grid", 16}};
+  e["metrics"] = {"deltaE2000"};
+  test::write_text(dir.path() / "e.json", e.dump());
+  std::ostringstream log;
+  ASSERT_EQ(run_experiment(test::user_file_run_options(dir.path() / "e.json", dir.path() / "out"), log), 0) << log.str();
+  std::map<std::string, double> last;
+  std::ifstream rec(dir.path() / "out" / "records.jsonl");
+  for (std::string line; std::getline(rec, line);) {
+    const json r = json::parse(line);
+    if (r.value("type", "") != "frame" || r["frame"] != 63) continue;
+    for (const auto& m : r["metrics"])
+      if (m[0] == "deltaE2000") last[r["name"].get<std::string>()] = m[1].get<double>();
+  }
+  ASSERT_EQ(last.size(), 5u) << log.str();
+  for (const auto& [n, v] : last) std::printf("%-20s CIEDE2000 at frame 64: %.3f\n", n.c_str(), v);
+  const double ssaa = last["ssaa-4x4"];
+  EXPECT_LE(last["taau"], 1.25 * ssaa);
+  EXPECT_GT(last["one-sample-upscaled"], 2.0 * ssaa);
+  EXPECT_GT(last["ssaa-4x4-upscaled"], 2.0 * ssaa);
+  EXPECT_GT(last["falcor"], 2.0 * last["taau"]);
+  const json summary = read_json_file((dir.path() / "out" / "summary.json").string());
+  EXPECT_EQ(summary["variants"][1]["render_resolution"], json({48, 27}));
+  EXPECT_TRUE(summary["variants"][1]["gpu_ms_per_pass"].contains("surface"));
+  EXPECT_TRUE(summary["variants"][3]["gpu_ms_per_pass"].contains("upscale"));
+}
