@@ -8,6 +8,7 @@
 #include "experiments/sources/rendered_sources.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/spec/scene_setup.h"
+#include "experiments/taa_test/taa_test.h"
 #include "metrics/color/color_manager.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/user_file_run.h"
@@ -153,4 +154,19 @@ TEST(Upscaling, AnAccumulatingTaauAtHalfScaleRecoversOutputResolutionDetail) {
   EXPECT_EQ(summary["variants"][1]["render_resolution"], json({48, 27}));
   EXPECT_TRUE(summary["variants"][1]["gpu_ms_per_pass"].contains("surface"));
   EXPECT_TRUE(summary["variants"][3]["gpu_ms_per_pass"].contains("upscale"));
+}
+
+// Each upscaler passes taa-test at render scale 1/2 on the checks its design meets (both declare
+// converges failed, as falcor does: the box rejects the history at high-contrast edges).
+TEST(Upscaling, TaauAndFsr2PassTaaTestAtHalfScale) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  test::TempDir dir("upscaling_taa_test");
+  for (const char* name : {"taau", "fsr2"}) {
+    fs::create_directories(dir.path() / name);
+    const ConformanceReport r = run_taa_test(ctx, taa_test_settings(name, {}), (dir.path() / name).string(), "", 0.5);
+    EXPECT_TRUE(r.all_pass()) << r.text();
+    for (const char* c : {"finite", "deterministic", "ghosting", "cut", "pan", "flicker"})
+      EXPECT_TRUE(r.check(c)->applies && r.check(c)->pass) << name << " " << c << "\n" << r.text();
+  }
 }
