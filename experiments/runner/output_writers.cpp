@@ -312,18 +312,35 @@ void ImageWriter::finish() {
   std::vector<std::string> rows;
   for (const auto& r : plan_.references) rows.push_back(r.name);
   for (const auto& v : plan_.variants) rows.push_back(v.spec->name);
-  std::vector<std::vector<SheetTile>> sheet;
+  std::vector<std::vector<SheetTile>> sheet, zoomed;
+  // The zoom region of a tile (clipped to it), each pixel repeated zoom_scale times.
+  auto zoom = [&](const Image& im) {
+    const int x0 = std::min(out.zoom_x, im.width - 1), y0 = std::min(out.zoom_y, im.height - 1);
+    const int w = std::max(1, std::min(out.zoom_w, im.width - x0)), h = std::max(1, std::min(out.zoom_h, im.height - y0));
+    const int k = out.zoom_scale;
+    Image z(w * k, h * k, im.channels);
+    for (int y = 0; y < h * k; ++y)
+      for (int x = 0; x < w * k; ++x)
+        for (int c = 0; c < im.channels; ++c) z.at(x, y, c) = im.at(x0 + x / k, y0 + y / k, c);
+    return z;
+  };
   for (const auto& row : rows) {
-    std::vector<SheetTile> tiles;
+    std::vector<SheetTile> tiles, zooms;
     for (int c = 0; c < out.contact_sheet_columns; ++c) {
       const int frame = c * out.every;
       const fs::path png = frame_path(dir_ / row, frame, "png");
       if (frame >= plan_.frames || !fs::exists(png)) break;
-      tiles.push_back({row + " f" + std::to_string(frame), metrics::read_image(png.string())});
+      const std::string label = row + " f" + std::to_string(frame);
+      tiles.push_back({label, metrics::read_image(png.string())});
+      if (out.zoom_scale > 0) zooms.push_back({label, zoom(tiles.back().image)});
     }
     if (!tiles.empty()) sheet.push_back(std::move(tiles));
+    if (!zooms.empty()) zoomed.push_back(std::move(zooms));
   }
   if (!sheet.empty()) metrics::write_png((dir_ / "contact_sheet.png").string(), make_contact_sheet(sheet));
+  if (!zoomed.empty())
+    metrics::write_png((dir_ / "contact_sheet_zoom.png").string(),
+                       make_contact_sheet(zoomed, out.zoom_w * out.zoom_scale));
 }
 
 }  // namespace glintlab

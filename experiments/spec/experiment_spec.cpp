@@ -403,6 +403,21 @@ void ExperimentSpec::read_common(JsonReader& r, ExperimentSpec& s) {
     s.output.exposure = out->get_number("exposure", 0.0, -20.0, 20.0);
     s.output.contact_sheet = out->get_bool("contact_sheet", false);
     s.output.contact_sheet_columns = out->get_int("contact_sheet_columns", 8, 1, 64);
+    if (auto zoom = out->optional_child("contact_sheet_zoom")) {
+      if (!s.output.contact_sheet) out->fail("contact_sheet_zoom", "only applies with \"contact_sheet\": true");
+      const std::vector<double> r = zoom->get_numbers("region", 4, 0.0, 16384.0);
+      for (double x : r)
+        if (x != std::floor(x)) zoom->fail("region", "expected whole pixels [x, y, w, h]");
+      if (r[2] < 1 || r[3] < 1 || r[0] + r[2] > s.width || r[1] + r[3] > s.height)
+        zoom->fail("region", "[x, y, w, h] must lie inside the " + std::to_string(s.width) + "x" +
+                                 std::to_string(s.height) + " image with w, h >= 1");
+      s.output.zoom_x = int(r[0]);
+      s.output.zoom_y = int(r[1]);
+      s.output.zoom_w = int(r[2]);
+      s.output.zoom_h = int(r[3]);
+      s.output.zoom_scale = zoom->get_int("scale", 4, 1, 16);
+      zoom->finish();
+    }
     s.output.motion = out->get_bool("motion", false);
     s.output.halves = out->get_bool("halves", false);
     out->finish();
@@ -467,7 +482,8 @@ ExperimentSpec ExperimentSpec::read_frames_only(JsonReader& r, ExperimentSpec& s
 
 std::string variant_name_problem(const std::string& name) {
   static const std::set<std::string> reserved = {"reference", "motion", "figures", "frames.csv", "summary.json",
-                                                 "report.html", "records.jsonl", "contact_sheet.png"};
+                                                 "report.html", "records.jsonl", "contact_sheet.png",
+                                                 "contact_sheet_zoom.png"};
   const bool chars_ok = !name.empty() && name.size() <= 100 &&
                         std::all_of(name.begin(), name.end(), [](char c) {
                           return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '+' ||

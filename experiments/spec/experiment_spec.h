@@ -22,7 +22,8 @@
 //                      "itp_nits": 100, "flip": "hdr" | "ldr", "flip_ppd": 67.0206},
 //   "output": {"exr": true, "png": true, "every": 1, "display": "sRGB", "view": "ACES 1.0 SDR-video",
 //              "exposure": 0 (stops, previews only),
-//              "contact_sheet": false, "contact_sheet_columns": 8},
+//              "contact_sheet": false, "contact_sheet_columns": 8,
+//              "contact_sheet_zoom": {"region": [x, y, w, h], "scale": k}},
 //   "density_sweep": {"zirr": {"parameter": "log_density",   // a key of "glints" (optional;
 //                              "values": [5, 5.5, 6, ...],   //  experiments/runner/density_sweep.h)
 //                              "glints": {...}}}             // fixed at every value (optional)
@@ -120,6 +121,10 @@ struct OutputSpec {
   double exposure = 0.0;                   // stops applied to the scene-linear image before the view (previews only)
   bool contact_sheet = false;  // DIR/contact_sheet.png: rows = variants (+ reference), columns = saved frames
   int contact_sheet_columns = 8;  // at most this many saved frames per row
+  // "contact_sheet_zoom": {"region": [x, y, w, h], "scale": k}: also DIR/contact_sheet_zoom.png, the same
+  // sheet of that region of every frame (output pixels, clipped to the image), each pixel enlarged k
+  // times (nearest: a glint stays one sharp square). zoom_scale 0 = none.
+  int zoom_x = 0, zoom_y = 0, zoom_w = 0, zoom_h = 0, zoom_scale = 0;
   bool motion = false;  // DIR/motion/frame_NNNN.exr: the motion vectors flicker is measured along (`pixels`)
   // DIR/<reference>-half-a/ and -half-b/frame_NNNN.exr: the truth's two halves (where it has them), what
   // `measure --reference SEQ --reference-b SEQ` takes as a reference with its noise floor.

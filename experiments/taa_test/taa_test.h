@@ -9,8 +9,8 @@
 //   ghosting       a sphere crossing the sky before a static camera: what is left of the sphere's
 //                  contrast 4 frames after it left a pixel (sum |resolve - current| / sum |sphere - sky|;
 //                  bound 5 %)
-//   cut            the first frame after a camera cut against the resolve's first frame of that shot
-//                  rendered afresh (no history), relative to the frame's maximum (bound 1e-4)
+//   cut            the first frame after a camera cut, between two sequences whose first shots differ
+//                  (nothing of the history may remain), relative to the frame's maximum (bound 1e-4)
 //   pan            a steady pan over sand: pooled RMS error of 2x2-pixel means against the truth, over
 //                  that of one sample per pixel (whose aliasing mostly averages out at 2 px: what a
 //                  resolve adds there is blur, lag and ghosts; bound 1.25), 4x4 supersampling beside it
