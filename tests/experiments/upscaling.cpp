@@ -170,3 +170,26 @@ TEST(Upscaling, TaauAndFsr2PassTaaTestAtHalfScale) {
       EXPECT_TRUE(r.check(c)->applies && r.check(c)->pass) << name << " " << c << "\n" << r.text();
   }
 }
+
+// The zoomed contact sheet's region lies inside the image and needs the contact sheet.
+TEST(Upscaling, TheZoomedContactSheetIsChecked) {
+  json e = sand_scene(64, 36, {{"type", "static"}, {"fps", 30}, {"frames", 2}, {"position", {-4.5, 0.9, -0.5}},
+                              {"target", {3, 0, 1}}, {"fov", 40}});
+  e["variants"] = json::array({json{{"name", "a"}}});
+  auto problem = [&](const json& output) {
+    json x = e;
+    x["output"] = output;
+    try {
+      ExperimentSpec::from_json(x, "inline-test");
+      return std::string();
+    } catch (const ConfigError& err) {
+      return std::string(err.what());
+    }
+  };
+  EXPECT_EQ(problem({{"contact_sheet", true}, {"contact_sheet_zoom", {{"region", {10, 4, 20, 8}}, {"scale", 3}}}}), "");
+  EXPECT_NE(problem({{"contact_sheet", true}, {"contact_sheet_zoom", {{"region", {50, 4, 20, 8}}}}}).find("inside the 64x36"),
+            std::string::npos);
+  EXPECT_NE(problem({{"contact_sheet_zoom", {{"region", {1, 1, 2, 2}}}}}).find("\"contact_sheet\": true"), std::string::npos);
+  EXPECT_NE(problem({{"contact_sheet", true}, {"contact_sheet_zoom", {{"region", {1, 1, 2.5, 2}}}}}).find("whole pixels"),
+            std::string::npos);
+}
