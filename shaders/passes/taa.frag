@@ -120,7 +120,7 @@ vec3 taa_filtered(sampler2D t, vec2 pos, int filter_kind) {
 }
 
 // This frame's jitter in render pixels (the push constants hold it in output pixels).
-vec2 p_jitter_render() { return taa_jitters.xy * taa_g_scale; }
+vec2 taa_jitter_render() { return taa_jitters.xy * taa_g_scale; }
 // A render-resolution input at a texel, clamped to the render image.
 vec4 taa_rtexel(sampler2D t, ivec2 q) { return texelFetch(t, clamp(q, ivec2(0), taa_g_rsize - 1), 0); }
 ivec2 taa_render_size() { return taa_g_rsize; }
@@ -133,7 +133,7 @@ ivec2 taa_render_texel(vec2 pos) {
 ivec2 taa_under(ivec2 q) { return taa_render_texel(vec2(q) + 0.5); }
 // Where the sample of render texel i was taken, in output pixels: the camera of this frame sees at a
 // texel centre c the point whose unjittered position is c - jitter (core/scene/camera.h).
-vec2 taa_render_sample(ivec2 texel) { return (vec2(texel) + 0.5 - p_jitter_render()) / taa_g_scale; }
+vec2 taa_render_sample(ivec2 texel) { return (vec2(texel) + 0.5 - taa_jitter_render()) / taa_g_scale; }
 vec3 taa_render_color(ivec2 texel) { return taa_rtexel(taa_color_tex, texel).rgb; }
 vec3 taa_current(ivec2 offset) { return taa_rtexel(taa_color_tex, taa_under(taa_g_pixel + offset)).rgb; }
 vec3 taa_history(vec2 pos, int filter_kind) { return taa_filtered(taa_history_tex, pos, filter_kind); }

@@ -84,6 +84,7 @@ TaaResult taa_resolve(TaaPixel p) {
   // ---- [Reproject & accumulate] step 1: the current frame upsampled with Lanczos-2 over the 5x5 (in
   // effect 4x4) render texels around S, distances in render pixels; and the YCoCg bounding box of the
   // 3x3 render texels around S, computed from the same samples.
+  vec3 centre_adjusted = fsr2_adjusted(t0);
   vec3 sum = vec3(0.0), lo = vec3(3.4e38), hi = vec3(-3.4e38);
   float wsum = 0.0;
   for (int dy = -2; dy <= 2; ++dy)
@@ -100,7 +101,7 @@ TaaResult taa_resolve(TaaPixel p) {
         hi = max(hi, c);
       }
     }
-  vec3 cur = abs(wsum) > 1e-4 ? sum / wsum : fsr2_adjusted(t0);
+  vec3 cur = abs(wsum) > 1e-4 ? sum / wsum : centre_adjusted;
   cur = clamp(cur, lo, hi);  // the negative lobes may ring outside what was sampled
   // The weight of this frame's sample at S: the kernel's total (FSR 2's upsample weight), at most 1.
   float w_cur = clamp(wsum, 0.0, 1.0);
@@ -108,7 +109,7 @@ TaaResult taa_resolve(TaaPixel p) {
 
   // ---- [Create locks]: a thin feature (the centre texel's luma outside its 3x3 neighbours' range by
   // lock_threshold of that range) gets a new lock of full lifetime.
-  float lc = fsr2_adjusted(t0).x, nlo = 3.4e38, nhi = -3.4e38;
+  float lc = centre_adjusted.x, nlo = 3.4e38, nhi = -3.4e38;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       if (dx == 0 && dy == 0) continue;
