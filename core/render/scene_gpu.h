@@ -7,6 +7,7 @@
 #include "core/vk/handle.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace glintlab::core {
@@ -21,21 +22,28 @@ struct EnvironmentTexture {
 class SceneGpu {
  public:
   SceneGpu(const VkContext& ctx, const Mesh& mesh, const EnvironmentTexture& env);
+  // Another mesh under the environment of `same_environment` (shared, not uploaded again): the same
+  // scene at another level of detail (a variant rendered below the output resolution).
+  SceneGpu(const VkContext& ctx, const Mesh& mesh, const SceneGpu& same_environment);
 
   const Buffer& vertices() const { return vertices_; }
   const Buffer& indices() const { return indices_; }
   uint32_t index_count() const { return index_count_; }
   // The mesh's chunks (core/scene/mesh.h); a mesh without them is one chunk.
   const std::vector<MeshChunk>& chunks() const { return chunks_; }
-  const Image2D& env_map() const { return env_map_; }
-  VkSampler env_sampler() const { return sampler_.get(); }
+  const Image2D& env_map() const { return env_->map; }
+  VkSampler env_sampler() const { return env_->sampler.get(); }
 
  private:
+  struct Environment {
+    Image2D map;
+    Sampler sampler;
+  };
+  void upload_mesh(const VkContext& ctx, const Mesh& mesh);
   Buffer vertices_, indices_;
   uint32_t index_count_ = 0;
   std::vector<MeshChunk> chunks_;
-  Image2D env_map_;
-  Sampler sampler_;
+  std::shared_ptr<const Environment> env_;
 };
 
 }  // namespace glintlab::core

@@ -208,6 +208,7 @@ void SummaryWriter::finish() {
         e["render_scale"] = v.render_scale;
         e["render_resolution"] = {v.render_width(spec.width), v.render_height(spec.height)};
         e["glint_footprint"] = v.glint_footprint;
+        if (spec.mesh.max_edge_px > 0.0f) e["mesh_lod"] = v.mesh_lod;  // an adaptive grid: which resolution's
       }
       e["debug"] = v.debug;
       e["material"] = v.material_json;  // preset and every override (glints, energy_consistent, ...)

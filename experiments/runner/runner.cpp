@@ -259,14 +259,15 @@ static int run_frames_only(const RunOptions& opt, const ExperimentSpec& spec, co
 
 // The sources of a rendered run: each variant's frame graph (or its files), each truth (rendered or
 // cached, or read), the motion pass where the run measures or writes motion.
-static LoopSources rendered_sources(const core::VkContext& ctx, const core::SceneGpu& scene, const RunPlan& plan,
+static LoopSources rendered_sources(const core::VkContext& ctx, const SceneGpus& scenes, const RunPlan& plan,
                              const metrics::ColorManager& cm, const ReferenceCache& cache, RenderedFrames& frames,
                              const metrics::FrameMetrics* frame_metrics, std::ostream& log) {
   const ExperimentSpec& spec = *plan.spec;
   LoopSources s;
   for (const auto& v : plan.variants)
     s.variants.push_back(v.files ? file_sequence(*v.files, cm, spec.working_space)
-                                 : rendered_variant(ctx, scene, *v.spec, v.program, frames));
+                                 : rendered_variant(ctx, scenes.of(*v.spec), *v.spec, v.program, frames));
+  const core::SceneGpu& scene = scenes.display();  // the truth's and the motion's
   if (plan.measure || spec.output.motion) s.motion = rendered_motion(ctx, scene, frames);
   for (size_t r = 0; plan.measure && r < plan.references.size(); ++r) {
     const RunPlan::Reference& ref = plan.references[r];
@@ -377,6 +378,8 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
     log << "; the full grid has " << 2 * size_t(spec.mesh.tessellation) * spec.mesh.tessellation << ")";
   }
   log << "\n";
+  for (const auto& [scale, mesh] : data.render_lods)
+    log << "mesh at render scale " << scale << ": " << mesh.indices.size() / 3 << " triangles (mesh_lod \"render\")\n";
   if (!opt.images) spec.output.exr = spec.output.png = spec.output.contact_sheet = spec.output.motion = spec.output.halves = false;
   const RunPlan plan = make_plan(spec, spec.frames, measured, cm, data, ctx.info().name, &log);
   const auto [begin, end] = shard_range(spec.frames, opt.shard_index, opt.shard_count);
@@ -391,7 +394,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
 
   ImageWriter images(out_dir, plan, cm);
   if (work.last_frame >= 0) {
-    core::SceneGpu scene(ctx, data.mesh, data.env_texture);
+    const SceneGpus scenes(ctx, data);
     const std::string cache_dir = opt.cache_dir.empty() ? results_path("cache/reference") : opt.cache_dir;
     ReferenceCache cache(cache_dir);
     core::set_glint_table_cache_dir(cache_dir);  // a glint model's data table, beside the truths
@@ -400,7 +403,7 @@ static int run_with(const RunOptions& opt, std::ostream& log, const nlohmann::js
     if (plan.measure)
       frame_metrics = std::make_unique<metrics::FrameMetrics>(cm, spec.working_space, spec.metrics,
                                                                      spec.measured_metric_options());
-    FrameLoop loop(plan, rendered_sources(ctx, scene, plan, cm, cache, frames, frame_metrics.get(), log),
+    FrameLoop loop(plan, rendered_sources(ctx, scenes, plan, cm, cache, frames, frame_metrics.get(), log),
                    frame_metrics.get(), log);
     loop.run(work, {journal.get(), &images});
   }

@@ -272,6 +272,13 @@ ExperimentSpec ExperimentSpec::from_json(const nlohmann::json& j, const std::str
     if (vr.has("glint_footprint") && v.render_scale == 1.0)
       vr.fail("glint_footprint", "only applies with \"render_scale\" below 1 (the render pixel is then wider than the "
                                  "display pixel)");
+    v.mesh_lod = vr.get_enum("mesh_lod", "display", {"display", "render"});
+    if (vr.has("mesh_lod") && v.render_scale == 1.0)
+      vr.fail("mesh_lod", "only applies with \"render_scale\" below 1 (the render resolution is then below the "
+                          "output's)");
+    if (vr.has("mesh_lod") && !(s.mesh.max_edge_px > 0.0f))
+      vr.fail("mesh_lod", "only applies to a mesh that adapts to the resolution (scene.mesh.max_edge_px > 0); this "
+                          "one is the same grid at every resolution");
     // Below scale 1 a TAA's jitter cycles through 8 / s^2 phases (FSR 2's count) unless the variant says otherwise.
     const core::JitterSequence default_jitter =
         v.render_scale < 1.0 ? core::JitterSequence::HaltonFsr2 : core::JitterSequence::Halton16;

@@ -81,6 +81,11 @@ struct VariantSpec {
   // ("render", 1/s output pixels wide) or the display pixel ("display": the render footprint times s,
   // as FSR 2's mip-bias guidance does for textures).
   std::string glint_footprint = "render";
+  // "mesh_lod": which resolution an adaptive mesh (scene.mesh "max_edge_px") is adapted for at s < 1: the
+  // output's ("display", the default: the mesh the native variants and the truth draw) or the render
+  // resolution's ("render": max_edge_px and max_error_px in render pixels, as an engine picks a level of
+  // detail for the image it renders: fewer triangles, and vertex normals interpolated over wider cells).
+  std::string mesh_lod = "display";
   int samples_per_pixel() const { return aa == AaMethod::Ssaa ? ssaa_grid * ssaa_grid : 1; }
   // The render resolution of an output of w x h: round(s w) x round(s h), at least 1.
   int render_width(int w) const;

@@ -133,7 +133,7 @@ void check_color_names(const ExperimentSpec& spec, const metrics::ColorManager& 
     space("variants[" + std::to_string(i) + "].material.palette_space", spec.variants[i].material.palette_space);
 }
 
-std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec) {
+std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec, double render_scale) {
   std::vector<core::MeshView> views;
   if (!(spec.mesh.max_edge_px > 0.0f)) return views;
   // Every frame of the path, not only those this run renders (--frames, shards): one mesh per
@@ -142,7 +142,8 @@ std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec) {
     const core::FrameCamera cam = spec.path.frame(k, spec.width, spec.height);
     glm::vec3 eye = cam.position;
     if (spec.mesh.motion.moves()) eye = glm::vec3(glm::inverse(spec.mesh.motion.model_at(cam.time)) * glm::vec4(eye, 1.0f));
-    views.push_back({eye, float(double(spec.height) / (2.0 * std::tan(0.5 * glm::radians(double(cam.state.fov_y_deg)))))});
+    views.push_back({eye, float(render_scale * double(spec.height) /
+                                (2.0 * std::tan(0.5 * glm::radians(double(cam.state.fov_y_deg)))))});
   }
   return views;
 }
@@ -150,10 +151,24 @@ std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec) {
 SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& cm) {
   SceneData d;
   d.mesh = core::build_mesh(spec.mesh, mesh_views(spec));
+  if (spec.mesh.max_edge_px > 0.0f)
+    for (const VariantSpec& v : spec.variants)
+      if (v.frames.empty() && v.render_scale < 1.0 && v.mesh_lod == "render" && d.render_lods.count(v.render_scale) == 0)
+        d.render_lods.emplace(v.render_scale, core::build_mesh(spec.mesh, mesh_views(spec, v.render_scale)));
   d.env = prepare_environment(spec, cm);
   d.env_texture = environment_texture(d.env);
   d.range = distance_range(spec, d.mesh);
   return d;
+}
+
+SceneGpus::SceneGpus(const core::VkContext& ctx, const SceneData& data)
+    : display_(std::make_unique<core::SceneGpu>(ctx, data.mesh, data.env_texture)) {
+  for (const auto& [scale, mesh] : data.render_lods) lods_[scale] = std::make_unique<core::SceneGpu>(ctx, mesh, *display_);
+}
+
+const core::SceneGpu& SceneGpus::of(const VariantSpec& v) const {
+  const auto it = lods_.find(v.render_scale);
+  return v.mesh_lod == "render" && it != lods_.end() ? *it->second : *display_;
 }
 
 core::FrameUniforms frame_uniforms(const ExperimentSpec& spec, const SceneData& scene, int k) {

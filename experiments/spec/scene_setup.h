@@ -13,6 +13,9 @@
 #include "experiments/spec/experiment_spec.h"
 #include "metrics/color/color_manager.h"
 
+#include <map>
+#include <memory>
+
 namespace glintlab {
 
 // Sky map and sun converted to `working_space` (OCIO), SH irradiance computed.
@@ -39,7 +42,10 @@ std::string display_view_problem(const metrics::ColorManager& cm, const std::str
 
 // Everything about the scene that is built once per run, CPU side.
 struct SceneData {
-  core::Mesh mesh;
+  core::Mesh mesh;  // as the run's (output) resolution adapts it: what the truth and native variants draw
+  // The adaptive grid at each render scale below 1 that a variant draws it at ("mesh_lod" "render";
+  // nothing for a grid that does not adapt).
+  std::map<double, core::Mesh> render_lods;
   core::Environment env;
   core::EnvironmentTexture env_texture;
   core::SandFeatures range;  // camera distances the run reaches (pruning)
@@ -51,8 +57,24 @@ SceneData build_scene(const ExperimentSpec& spec, const metrics::ColorManager& c
 metrics::ColorManager load_color_manager(const std::string& ocio_config);
 
 // The camera positions an adaptive grid ("max_edge_px") serves: every frame of the path, at the
-// spec's resolution, in the mesh's object space. Empty when the grid does not adapt.
-std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec);
+// spec's resolution times `render_scale` (the pixels the grid's bounds count), in the mesh's object
+// space. Empty when the grid does not adapt.
+std::vector<core::MeshView> mesh_views(const ExperimentSpec& spec, double render_scale = 1.0);
+
+// The scene on the GPU: SceneData's mesh and its render-scale levels of detail, which share its
+// environment map.
+class SceneGpus {
+ public:
+  SceneGpus(const core::VkContext& ctx, const SceneData& data);
+  const core::SceneGpu& display() const { return *display_; }
+  // What variant `v` draws: its render scale's level of detail where SceneData has one and the variant
+  // asks for it (mesh_lod "render"), else the display mesh.
+  const core::SceneGpu& of(const VariantSpec& v) const;
+
+ private:
+  std::unique_ptr<core::SceneGpu> display_;
+  std::map<double, std::unique_ptr<core::SceneGpu>> lods_;
+};
 
 // Frame uniforms of frame `k` of the spec's path (unjittered camera, mesh motion).
 core::FrameUniforms frame_uniforms(const ExperimentSpec& spec, const SceneData& scene, int k);

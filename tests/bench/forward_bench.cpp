@@ -17,7 +17,9 @@
 //      grid adapted to the camera path: what culling and the adaptive grid save.
 //   2. The reference: ms per sample of a grid x grid reference frame against a
 //      1-spp frame's, and a geometry-bound case (a small image, many samples).
-//   3. The TAA resolve against the surface pass of the same frame.
+//   3. The TAA resolve against the surface pass of the same frame; the surface pass and resolve of taau at
+//      render scale 1/2; and on the default experiment's dunes the surface pass of native TAA, of taau at 1/2
+//      on the output's grid and on the render resolution's (mesh_lod), and at 1/4: what fewer pixels save.
 //   4. Every per-frame metric of one 640x360 variant frame against a 2x2-sample
 //      render of the same frame (its reference): ms per metric.
 //   5. `glintlab measure` end to end on files: a 1920x1080 test sequence against
@@ -658,6 +660,59 @@ int bench(int argc, char** argv) {
                 "(%.3f of native's)\n",
                 rw, rh, w, h, median(hper["surface"]), median(hper["surface"]) / median(per["surface"]),
                 median(hper["taa"]), median(hper["taa"]) / median(per["taa"]));
+
+    // The same on the dunes of the default experiment (its flyover's frame 4, its adapted grid): native TAA,
+    // and taau at 1/2 on the grid adapted for the output (mesh_lod "display", the default) and for its render
+    // resolution ("render"), in this one run, frames interleaved.
+    ExperimentSpec dspec = ExperimentSpec::load(resolve_experiment_path("default"));
+    dspec.width = w;
+    dspec.height = h;
+    const VariantSpec* dtaa = nullptr;
+    for (const VariantSpec& v : dspec.variants)
+      if (v.name == "taa") dtaa = &v;
+    if (!dtaa) throw std::runtime_error("the default experiment has no variant \"taa\"");
+    VariantSpec dhalf = *dtaa;
+    dhalf.name = "taau-0.5";
+    dhalf.render_scale = 0.5;
+    dhalf.taa = core::TaaSettings(*core::find_builtin_taa_resolve("taau"));
+    dhalf.taa.jitter = core::JitterSequence::HaltonFsr2;
+    VariantSpec drender = dhalf;
+    drender.mesh_lod = "render";
+    VariantSpec dquarter = dhalf;  // what a lower resolution does not shrink: the triangles' own cost
+    dquarter.render_scale = 0.25;
+    const VariantSpec native = *dtaa;
+    dspec.variants = {native, dhalf, drender, dquarter};
+    const SceneData ddata = build_scene(dspec, cm);  // the adapted grid, and the one at render scale 1/2
+    const SceneGpus dgpus(ctx, ddata);
+    const core::MaterialProgram dprogram = core::sand_program(
+        to_working_space(native.material, dspec.working_space, cm), ddata.range, core::ProgramRole::Variant);
+    std::vector<RenderSetup> dsetups;
+    std::vector<core::FrameInputs> dinputs;
+    for (const VariantSpec& v : dspec.variants) {
+      dsetups.push_back(build_variant(ctx, dgpus.of(v), w, h, v, dprogram));
+      const int rw = v.render_width(w), rh = v.render_height(h);
+      core::FrameInputs in;
+      in.uniforms = frame_uniforms(dspec.path.frame(4, rw, rh), ddata.env, rw, rh, ddata.env_texture.mips_rgba.size());
+      in.samples = core::samples_for(dspec.path, 4, rw, rh, {core::jitter_offset(v.taa.jitter, 0, v.render_scale)});
+      dinputs.push_back(in);
+    }
+    std::vector<std::map<std::string, std::vector<double>>> dper(dsetups.size());
+    for (int i = 0; i < frames + 2; ++i)
+      for (size_t c = 0; c < dsetups.size(); ++c) {
+        core::FrameResult r = dsetups[c].graph->execute(dinputs[c]);
+        if (i >= 2)
+          for (const auto& t : r.timings) dper[c][t.pass].push_back(t.gpu_ms);
+      }
+    std::printf("on the default experiment's dunes at %dx%d (flyover frame 4), surface pass:\n", w, h);
+    std::printf("  %-34s %11s %11s %9s\n", "variant", "triangles", "ms", "ratio");
+    const char* labels[] = {"native TAA (falcor)", "taau 1/2, mesh_lod display", "taau 1/2, mesh_lod render",
+                            "taau 1/4, mesh_lod display"};
+    for (size_t c = 0; c < dsetups.size(); ++c) {
+      const bool lod = dspec.variants[c].mesh_lod == "render";
+      std::printf("  %-34s %11zu %11.2f %9.3f\n", labels[c],
+                  (lod ? ddata.render_lods.at(0.5) : ddata.mesh).indices.size() / 3, median(dper[c]["surface"]),
+                  median(dper[c]["surface"]) / median(dper[0]["surface"]));
+    }
   }
 
   // ---- 4. metrics of one variant frame

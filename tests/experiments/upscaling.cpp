@@ -17,9 +17,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace glintlab;
@@ -40,6 +45,39 @@ json sand_scene(int w, int h, const json& path) {
            {{"preset", "thesis-hdri-match"}, {"noise_scale", 400}, {"glint_sigma", 0.002}, {"I_glints", {20, 20, 20}},
             {"sigmoid_a", 2}, {"sigmoid_b", 1000}}},
           {"output", {{"exr", false}, {"png", false}}}};
+}
+
+// Expects experiment `e` with its variants replaced by `variant` to be refused with a message holding `want`.
+void expect_rejected(json e, const json& variant, const std::string& want) {
+  e["variants"] = json::array({variant});
+  try {
+    ExperimentSpec::from_json(e, "inline-test");
+    ADD_FAILURE() << "accepted " << variant.dump();
+  } catch (const ConfigError& err) {
+    EXPECT_NE(std::string(err.what()).find(want), std::string::npos) << err.what();
+  }
+}
+
+// Runs experiment `e` in `dir` (its file e.json, its output out/) and returns every variant's CIEDE2000
+// per frame, by variant name; empty (and a failure) if the run fails.
+std::map<std::string, std::vector<double>> run_delta_e(const fs::path& dir, const json& e) {
+  test::write_text(dir / "e.json", e.dump());
+  std::ostringstream log;
+  if (run_experiment(test::user_file_run_options(dir / "e.json", dir / "out"), log) != 0) {
+    ADD_FAILURE() << log.str();
+    return {};
+  }
+  std::map<std::string, std::vector<double>> de;
+  std::ifstream rec(dir / "out" / "records.jsonl");
+  for (std::string line; std::getline(rec, line);) {
+    const json r = json::parse(line);
+    if (r.value("type", "") != "frame") continue;
+    std::vector<double>& v = de[r["name"].get<std::string>()];
+    v.resize(std::max(v.size(), r["frame"].get<size_t>() + 1), std::nan(""));
+    for (const auto& m : r["metrics"])
+      if (m[0] == "deltaE2000") v[r["frame"].get<size_t>()] = m[1].get<double>();
+  }
+  return de;
 }
 
 }  // namespace
@@ -66,20 +104,10 @@ TEST(Upscaling, RenderScaleIsCheckedAndChoosesFsr2sJitter) {
   EXPECT_EQ(s.variants[2].taa.jitter, core::JitterSequence::Halton16) << "native: Falcor's";
   EXPECT_EQ(s.variants[0].render_width(640), 320);
   EXPECT_EQ(s.variants[0].render_height(360), 180);
-  auto rejected = [&](const json& v, const std::string& want) {
-    json bad = e;
-    bad["variants"] = json::array({v});
-    try {
-      ExperimentSpec::from_json(bad, "inline-test");
-      ADD_FAILURE() << "accepted " << v.dump();
-    } catch (const ConfigError& err) {
-      EXPECT_NE(std::string(err.what()).find(want), std::string::npos) << err.what();
-    }
-  };
-  rejected({{"name", "x"}, {"render_scale", 0.2}}, "variants[0].render_scale");
-  rejected({{"name", "x"}, {"render_scale", 1.5}}, "variants[0].render_scale");
-  rejected({{"name", "x"}, {"glint_footprint", "display"}}, "only applies with \"render_scale\" below 1");
-  rejected({{"name", "x"}, {"render_scale", 0.5}, {"glint_footprint", "pixel"}}, "\"render\", \"display\"");
+  expect_rejected(e, {{"name", "x"}, {"render_scale", 0.2}}, "variants[0].render_scale");
+  expect_rejected(e, {{"name", "x"}, {"render_scale", 1.5}}, "variants[0].render_scale");
+  expect_rejected(e, {{"name", "x"}, {"glint_footprint", "display"}}, "only applies with \"render_scale\" below 1");
+  expect_rejected(e, {{"name", "x"}, {"render_scale", 0.5}, {"glint_footprint", "pixel"}}, "\"render\", \"display\"");
 }
 
 // At render scale 1 taau renders what falcor renders with the same choices (there is nothing to
@@ -132,18 +160,10 @@ TEST(Upscaling, AnAccumulatingTaauAtHalfScaleRecoversOutputResolutionDetail) {
        json{{"name", "ssaa-4x4-upscaled"}, {"aa", "ssaa"}, {"ssaa_grid", 4}, {"render_scale", 0.5}}});
   e["reference"] = {{"grid", 16}};
   e["metrics"] = {"deltaE2000"};
-  test::write_text(dir.path() / "e.json", e.dump());
-  std::ostringstream log;
-  ASSERT_EQ(run_experiment(test::user_file_run_options(dir.path() / "e.json", dir.path() / "out"), log), 0) << log.str();
   std::map<std::string, double> last;
-  std::ifstream rec(dir.path() / "out" / "records.jsonl");
-  for (std::string line; std::getline(rec, line);) {
-    const json r = json::parse(line);
-    if (r.value("type", "") != "frame" || r["frame"] != 63) continue;
-    for (const auto& m : r["metrics"])
-      if (m[0] == "deltaE2000") last[r["name"].get<std::string>()] = m[1].get<double>();
-  }
-  ASSERT_EQ(last.size(), 5u) << log.str();
+  for (const auto& [name, de] : run_delta_e(dir.path(), e))
+    if (de.size() == 64) last[name] = de[63];
+  ASSERT_EQ(last.size(), 5u);
   for (const auto& [n, v] : last) std::printf("%-20s CIEDE2000 at frame 64: %.3f\n", n.c_str(), v);
   const double ssaa = last["ssaa-4x4"];
   EXPECT_LE(last["taau"], 1.25 * ssaa);
@@ -192,4 +212,60 @@ TEST(Upscaling, TheZoomedContactSheetIsChecked) {
   EXPECT_NE(problem({{"contact_sheet_zoom", {{"region", {1, 1, 2, 2}}}}}).find("\"contact_sheet\": true"), std::string::npos);
   EXPECT_NE(problem({{"contact_sheet", true}, {"contact_sheet_zoom", {{"region", {1, 1, 2.5, 2}}}}}).find("whole pixels"),
             std::string::npos);
+}
+
+// "mesh_lod": below scale 1 a variant on an adaptive grid draws the output's grid ("display", the
+// default, as native variants and the truth do) or the grid adapted for its render resolution
+// ("render"): the very grid a run at that resolution draws, fewer triangles. Its images stay close to
+// the display grid's (no cracks, no lost surface): the grid keeps its bounds, in render pixels.
+TEST(Upscaling, MeshLodRenderDrawsTheGridAdaptedForTheRenderResolution) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  test::TempDir dir("upscaling_mesh_lod");
+  json e = sand_scene(160, 90, {{"type", "orbit"}, {"fps", 30}, {"frames", 3}, {"center", {0, 1.5, 0}}, {"radius", 6},
+                                {"height", 2.5}, {"start_deg", 200}, {"end_deg", 206}, {"fov", 40}});
+  e["scene"]["mesh"] = {{"type", "dunes"},        {"size", 80},      {"tessellation", 160}, {"max_edge_px", 4},
+                        {"max_error_px", 0.5},    {"amplitude", 3},  {"wavelength", 24},    {"octaves", 3},
+                        {"gain", 0.4},            {"seed", 3}};
+  e["variants"] = json::array(
+      {json{{"name", "native"}, {"aa", "taa"}},
+       json{{"name", "render-lod"}, {"aa", "taa"}, {"render_scale", 0.5}, {"taa", {{"name", "taau"}}}, {"mesh_lod", "render"}},
+       json{{"name", "display-lod"}, {"aa", "taa"}, {"render_scale", 0.5}, {"taa", {{"name", "taau"}}}}});
+  e["reference"] = {{"grid", 4}};
+  e["metrics"] = {"deltaE2000"};
+  const ExperimentSpec spec = ExperimentSpec::from_json(e, "inline-test");
+  const SceneData data = build_scene(spec, metrics::ColorManager());
+  ASSERT_EQ(data.render_lods.size(), 1u);
+  const core::Mesh& lod = data.render_lods.at(0.5);
+  ExperimentSpec half = spec;
+  half.width = 80;
+  half.height = 45;
+  EXPECT_EQ(lod.indices, core::build_mesh(half.mesh, mesh_views(half)).indices)
+      << "the grid of a run at the render resolution: max_edge_px and max_error_px in its pixels";
+  EXPECT_LT(lod.indices.size(), data.mesh.indices.size() * 3 / 4);
+  std::printf("triangles: output's grid %zu, render scale 1/2's %zu\n", data.mesh.indices.size() / 3,
+              lod.indices.size() / 3);
+  const SceneGpus gpus(ctx, data);
+  EXPECT_EQ(gpus.of(spec.variants[0]).index_count(), data.mesh.indices.size()) << "native: the output's grid";
+  EXPECT_EQ(gpus.of(spec.variants[1]).index_count(), lod.indices.size());
+  EXPECT_EQ(gpus.of(spec.variants[2]).index_count(), data.mesh.indices.size()) << "mesh_lod display, the default";
+  EXPECT_EQ(&gpus.of(spec.variants[1]).env_map(), &gpus.display().env_map()) << "one environment map, shared";
+
+  std::map<std::string, double> mean;
+  for (const auto& [name, de] : run_delta_e(dir.path(), e))
+    if (de.size() == 3) mean[name] = (de[0] + de[1] + de[2]) / 3.0;
+  ASSERT_EQ(mean.size(), 3u);
+  std::printf("mean CIEDE2000: native %.3f, render-lod %.3f, display-lod %.3f\n", mean["native"], mean["render-lod"],
+              mean["display-lod"]);
+  EXPECT_LE(mean["render-lod"], 1.35 * mean["display-lod"]);
+  EXPECT_NE(mean["render-lod"], mean["display-lod"]) << "another grid draws another image";
+  const json summary = read_json_file((dir.path() / "out" / "summary.json").string());
+  EXPECT_EQ(summary["variants"][1]["mesh_lod"], "render");
+  EXPECT_EQ(summary["variants"][2]["mesh_lod"], "display");
+  EXPECT_FALSE(summary["variants"][0].contains("mesh_lod"));
+
+  expect_rejected(e, {{"name", "x"}, {"mesh_lod", "display"}}, "only applies with \"render_scale\" below 1");
+  expect_rejected(e, {{"name", "x"}, {"render_scale", 0.5}, {"mesh_lod", "fine"}}, "\"display\", \"render\"");
+  expect_rejected(sand_scene(64, 36, e["camera_path"]), {{"name", "x"}, {"render_scale", 0.5}, {"mesh_lod", "render"}},
+                  "scene.mesh.max_edge_px > 0");
 }
