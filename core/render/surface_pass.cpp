@@ -466,7 +466,7 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
       vkCmdDraw(cmd, 3, 1, 0, 0);
     }
     vkCmdEndRenderPass(cmd);
-    if (sum_opaque_) add_sample(cmd, i > 0, viewport, scissor);
+    if (sum_opaque_) add_sample(cmd, i > 0, scissor);
   }
   if (f > 1) resolve(cmd);
 }
@@ -474,21 +474,12 @@ void SurfacePass::record(VkCommandBuffer cmd, const FrameInputs& in, const Targe
 // Adds (or, the first, writes) the sample in the pass's own image to the
 // colour target: a full-screen draw with blending ONE + ONE, the same fp32
 // additions the blended path makes.
-void SurfacePass::add_sample(VkCommandBuffer cmd, bool add, const VkViewport& viewport, const VkRect2D& scissor) {
+void SurfacePass::add_sample(VkCommandBuffer cmd, bool add, const VkRect2D& scissor) {
   transition(cmd, hi_color_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
              VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
              VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-  VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rb.renderPass = add_render_pass_.get();
-  rb.framebuffer = add_framebuffer_.get();
-  rb.renderArea = scissor;
-  vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, add_pipeline_[add ? 1 : 0].get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, resolve_layout_.get(), 0, 1, &resolve_set_.set, 0, nullptr);
-  vkCmdDraw(cmd, 3, 1, 0, 0);
-  vkCmdEndRenderPass(cmd);
+  record_fullscreen_draw(cmd, {add_render_pass_.get(), add_framebuffer_.get(), scissor, add_pipeline_[add ? 1 : 0].get(),
+                               resolve_layout_.get(), resolve_set_.set});
 }
 
 // The box filter of the supersampled image into the colour target (which the

@@ -118,7 +118,7 @@ class SurfacePass final : public Pass {
   PipelineLayout layout_;
   void build_surface_pipeline(const std::vector<std::string>& fragment_defines);
   void resolve(VkCommandBuffer cmd);
-  void add_sample(VkCommandBuffer cmd, bool add, const VkViewport& viewport, const VkRect2D& scissor);
+  void add_sample(VkCommandBuffer cmd, bool add, const VkRect2D& scissor);
 
   ShaderModule vertex_module_;
   std::vector<std::string> fragment_defines_;  // without the lighting constants

@@ -148,20 +148,9 @@ void TaaPass::record(VkCommandBuffer cmd, const FrameInputs& in, const TargetSet
             float(color.width()), float(color.height()), scale.x, scale.y, {}};
   for (size_t i = 0; i < s_.values.size(); ++i) p.values[i] = float(s_.values[i]);
   const int slot = t.current_slot("taa.history");
-  const VkRect2D area{{0, 0}, {uint32_t(t.width()), uint32_t(t.height())}};
-  const VkViewport viewport{0, 0, float(t.width()), float(t.height()), 0, 1};
-  VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rb.renderPass = render_pass_.get();
-  rb.framebuffer = framebuffers_[slot].get();
-  rb.renderArea = area;
-  vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &area);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &sets_[slot].set, 0, nullptr);
-  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof p, &p);
-  vkCmdDraw(cmd, 3, 1, 0, 0);
-  vkCmdEndRenderPass(cmd);
+  record_fullscreen_draw(cmd, {render_pass_.get(), framebuffers_[slot].get(),
+                               {{0, 0}, {uint32_t(t.width()), uint32_t(t.height())}}, pipeline_.get(), layout_.get(),
+                               sets_[slot].set, &p, sizeof p});
 }
 
 }  // namespace glintlab::core

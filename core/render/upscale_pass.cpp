@@ -57,20 +57,9 @@ void UpscalePass::setup(const TargetSet& t) {
 void UpscalePass::record(VkCommandBuffer cmd, const FrameInputs&, const TargetSet& t) {
   const Image2D& in = t.image(input_);
   const UpscalePush p{float(t.width()), float(t.height()), float(in.width()), float(in.height())};
-  const VkRect2D area{{0, 0}, {uint32_t(t.width()), uint32_t(t.height())}};
-  const VkViewport viewport{0, 0, float(t.width()), float(t.height()), 0, 1};
-  VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rb.renderPass = render_pass_.get();
-  rb.framebuffer = framebuffer_.get();
-  rb.renderArea = area;
-  vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &area);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set_.set, 0, nullptr);
-  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof p, &p);
-  vkCmdDraw(cmd, 3, 1, 0, 0);
-  vkCmdEndRenderPass(cmd);
+  record_fullscreen_draw(cmd, {render_pass_.get(), framebuffer_.get(),
+                               {{0, 0}, {uint32_t(t.width()), uint32_t(t.height())}}, pipeline_.get(), layout_.get(),
+                               set_.set, &p, sizeof p});
 }
 
 }  // namespace glintlab::core

@@ -147,6 +147,23 @@ Pipeline make_fullscreen_pipeline(const VkContext& ctx, VkPipelineLayout layout,
   return create_graphics_pipeline(ctx, ci, layout, rp);
 }
 
+void record_fullscreen_draw(VkCommandBuffer cmd, const FullscreenDraw& d) {
+  const VkViewport viewport{float(d.area.offset.x), float(d.area.offset.y), float(d.area.extent.width),
+                            float(d.area.extent.height), 0, 1};
+  VkRenderPassBeginInfo rb{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rb.renderPass = d.render_pass;
+  rb.framebuffer = d.framebuffer;
+  rb.renderArea = d.area;
+  vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &d.area);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, d.pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, d.layout, 0, 1, &d.set, 0, nullptr);
+  if (d.push) vkCmdPushConstants(cmd, d.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, d.push_size, d.push);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRenderPass(cmd);
+}
+
 VkAttachmentDescription kept_attachment(VkFormat format, VkImageLayout layout, VkAttachmentLoadOp load) {
   VkAttachmentDescription a{};
   a.format = format;

@@ -45,6 +45,21 @@ Pipeline create_graphics_pipeline(const VkContext& ctx, VkGraphicsPipelineCreate
 Pipeline make_fullscreen_pipeline(const VkContext& ctx, VkPipelineLayout layout, VkRenderPass rp, VkShaderModule vs,
                                   VkShaderModule fs, const std::vector<VkPipelineColorBlendAttachmentState>& blends);
 
+// Records one draw of such a pipeline: render pass `render_pass` on `framebuffer` over `area` (its
+// viewport and scissor too), the pipeline with descriptor set `set` of `layout`, and `push_size` bytes
+// of fragment-stage push constants from `push` where given.
+struct FullscreenDraw {
+  VkRenderPass render_pass = VK_NULL_HANDLE;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  VkRect2D area{};
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  const void* push = nullptr;
+  uint32_t push_size = 0;
+};
+void record_fullscreen_draw(VkCommandBuffer cmd, const FullscreenDraw& d);
+
 // An attachment that stays in `layout` before and after the pass (the frame
 // graph's convention), loaded with `load` and stored; no stencil.
 VkAttachmentDescription kept_attachment(VkFormat format, VkImageLayout layout, VkAttachmentLoadOp load);

@@ -125,6 +125,29 @@ double spread(const std::vector<double>& v) {
   return 100.0 * (s.percentile(0.75) - s.percentile(0.25)) / s.percentile(0.5);
 }
 
+// GPU ms per pass of each graph over `frames` frames after two warm-up ones, the graphs' frames interleaved
+// (so that drift in the machine's load spreads over all of them): per graph, per pass name.
+std::vector<std::map<std::string, std::vector<double>>> time_passes(const std::vector<RenderSetup*>& setups,
+                                                                    const std::vector<core::FrameInputs>& in,
+                                                                    int frames) {
+  std::vector<std::map<std::string, std::vector<double>>> per(setups.size());
+  for (int i = 0; i < frames + 2; ++i)
+    for (size_t c = 0; c < setups.size(); ++c) {
+      const core::FrameResult r = setups[c]->graph->execute(in[c]);
+      if (i >= 2)
+        for (const auto& t : r.timings) per[c][t.pass].push_back(t.gpu_ms);
+    }
+  return per;
+}
+
+// `v` as taau at render scale 1/2 with its default jitter (halton_fsr2).
+VariantSpec taau_half(VariantSpec v) {
+  v.render_scale = 0.5;
+  v.taa = core::TaaSettings(*core::find_builtin_taa_resolve("taau"));
+  v.taa.jitter = core::JitterSequence::HaltonFsr2;
+  return v;
+}
+
 core::FrameInputs inputs(const ExperimentSpec& spec, const SceneData& data, int w, int h,
                          const std::vector<glm::vec2>& offsets) {
   core::FrameInputs in;
@@ -632,30 +655,18 @@ int bench(int argc, char** argv) {
     RenderSetup taa = build_variant(ctx, scene, w, h, spec.variants[1], core::sand_program(base, data.range,
                                                                                            core::ProgramRole::Variant));
     core::FrameInputs in = inputs(spec, data, w, h, {core::jitter_offset(core::JitterSequence::Halton16, 0)});
-    std::map<std::string, std::vector<double>> per;
-    for (int i = 0; i < frames + 2; ++i) {
-      core::FrameResult r = taa.graph->execute(in);
-      if (i >= 2)
-        for (const auto& t : r.timings) per[t.pass].push_back(t.gpu_ms);
-    }
-    std::printf("\nTAA at %dx%d: surface pass (with motion vectors) %.2f ms, TAA resolve %.2f ms (%.3f of the surface "
-                "pass)\n",
-                w, h, median(per["surface"]), median(per["taa"]), median(per["taa"]) / median(per["surface"]));
     // Temporal upscaling at render scale 1/2 (taau): the surface pass at (w/2)x(h/2), the resolve at w x h,
-    // in the same run as the native rows above.
-    VariantSpec half = spec.variants[1];
-    half.render_scale = 0.5;
-    half.taa = core::TaaSettings(*core::find_builtin_taa_resolve("taau"));
-    half.taa.jitter = core::JitterSequence::HaltonFsr2;
+    // in the same run as the native rows.
+    const VariantSpec half = taau_half(spec.variants[1]);
     RenderSetup up = build_variant(ctx, scene, w, h, half, core::sand_program(base, data.range, core::ProgramRole::Variant));
     const int rw = half.render_width(w), rh = half.render_height(h);
     core::FrameInputs hin = inputs(spec, data, rw, rh, {core::jitter_offset(half.taa.jitter, 0, 0.5)});
-    std::map<std::string, std::vector<double>> hper;
-    for (int i = 0; i < frames + 2; ++i) {
-      core::FrameResult r = up.graph->execute(hin);
-      if (i >= 2)
-        for (const auto& t : r.timings) hper[t.pass].push_back(t.gpu_ms);
-    }
+    auto times = time_passes({&taa, &up}, {in, hin}, frames);
+    auto& per = times[0];
+    auto& hper = times[1];
+    std::printf("\nTAA at %dx%d: surface pass (with motion vectors) %.2f ms, TAA resolve %.2f ms (%.3f of the surface "
+                "pass)\n",
+                w, h, median(per["surface"]), median(per["taa"]), median(per["taa"]) / median(per["surface"]));
     std::printf("taau at render scale 1/2 (%dx%d -> %dx%d): surface pass %.2f ms (%.3f of native), resolve %.2f ms "
                 "(%.3f of native's)\n",
                 rw, rh, w, h, median(hper["surface"]), median(hper["surface"]) / median(per["surface"]),
@@ -671,11 +682,7 @@ int bench(int argc, char** argv) {
     for (const VariantSpec& v : dspec.variants)
       if (v.name == "taa") dtaa = &v;
     if (!dtaa) throw std::runtime_error("the default experiment has no variant \"taa\"");
-    VariantSpec dhalf = *dtaa;
-    dhalf.name = "taau-0.5";
-    dhalf.render_scale = 0.5;
-    dhalf.taa = core::TaaSettings(*core::find_builtin_taa_resolve("taau"));
-    dhalf.taa.jitter = core::JitterSequence::HaltonFsr2;
+    const VariantSpec dhalf = taau_half(*dtaa);
     VariantSpec drender = dhalf;
     drender.mesh_lod = "render";
     VariantSpec dquarter = dhalf;  // what a lower resolution does not shrink: the triangles' own cost
@@ -690,19 +697,15 @@ int bench(int argc, char** argv) {
     std::vector<core::FrameInputs> dinputs;
     for (const VariantSpec& v : dspec.variants) {
       dsetups.push_back(build_variant(ctx, dgpus.of(v), w, h, v, dprogram));
-      const int rw = v.render_width(w), rh = v.render_height(h);
-      core::FrameInputs in;
-      in.uniforms = frame_uniforms(dspec.path.frame(4, rw, rh), ddata.env, rw, rh, ddata.env_texture.mips_rgba.size());
-      in.samples = core::samples_for(dspec.path, 4, rw, rh, {core::jitter_offset(v.taa.jitter, 0, v.render_scale)});
-      dinputs.push_back(in);
+      const int vw = v.render_width(w), vh = v.render_height(h);
+      core::FrameInputs vin;
+      vin.uniforms = frame_uniforms(dspec.path.frame(4, vw, vh), ddata.env, vw, vh, ddata.env_texture.mips_rgba.size());
+      vin.samples = core::samples_for(dspec.path, 4, vw, vh, {core::jitter_offset(v.taa.jitter, 0, v.render_scale)});
+      dinputs.push_back(vin);
     }
-    std::vector<std::map<std::string, std::vector<double>>> dper(dsetups.size());
-    for (int i = 0; i < frames + 2; ++i)
-      for (size_t c = 0; c < dsetups.size(); ++c) {
-        core::FrameResult r = dsetups[c].graph->execute(dinputs[c]);
-        if (i >= 2)
-          for (const auto& t : r.timings) dper[c][t.pass].push_back(t.gpu_ms);
-      }
+    std::vector<RenderSetup*> dptrs;
+    for (RenderSetup& r : dsetups) dptrs.push_back(&r);
+    auto dper = time_passes(dptrs, dinputs, frames);
     std::printf("on the default experiment's dunes at %dx%d (flyover frame 4), surface pass:\n", w, h);
     std::printf("  %-34s %11s %11s %9s\n", "variant", "triangles", "ms", "ratio");
     const char* labels[] = {"native TAA (falcor)", "taau 1/2, mesh_lod display", "taau 1/2, mesh_lod render",

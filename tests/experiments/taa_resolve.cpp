@@ -7,6 +7,7 @@
 #include "experiments/runner/runner.h"
 #include "experiments/spec/experiment_spec.h"
 #include "experiments/taa_test/taa_test.h"
+#include "tests/support/project_sources.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/user_file_run.h"
 #include "tests/support/vk_test_util.h"
@@ -130,33 +131,21 @@ TEST(TaaResolve, NoSecondListOfResolvesOrTheirOptions) {
     }
   }
   ASSERT_GE(names.size(), 15u);
-  const fs::path root = fs::path(GLINTLAB_SHADER_DIR).parent_path();
-  const std::set<std::string> exts = {".cpp", ".h", ".glsl", ".comp", ".frag", ".vert", ".py"};
-  const std::vector<fs::path> exempt = {root / "shaders" / "taa", root / "shaders" / "tests",
-                                        root / "experiments" / "stress"};
-  size_t scanned = 0;
-  for (const char* top : {"core", "experiments", "shaders", "metrics"}) {
-    for (const auto& e : fs::recursive_directory_iterator(root / top)) {
-      if (!e.is_regular_file() || !exts.count(e.path().extension().string())) continue;
-      bool skip = false;
-      for (const auto& x : exempt) skip = skip || e.path().string().rfind(x.string(), 0) == 0;
-      if (skip) continue;
-      ++scanned;
-      const std::string text = read(e.path());
-      auto quoted = [&](const std::string& n) { return std::regex_search(text, std::regex("[\"']" + n + "[\"']")); };
-      std::vector<std::string> found;
-      for (const auto& n : names)
-        if (quoted(n)) found.push_back(n);
-      EXPECT_LT(found.size(), 3u) << e.path() << " names the options " << ::testing::PrintToString(found);
-      for (const auto& list : choices) {
-        std::vector<std::string> listed;
-        for (const auto& c : list)
-          if (quoted(c)) listed.push_back(c);
-        EXPECT_LT(listed.size(), 2u) << e.path() << " names the choices " << ::testing::PrintToString(listed);
-      }
+  const std::vector<test::SourceFile> sources = test::project_sources({"shaders/taa", "shaders/tests", "experiments/stress"});
+  for (const test::SourceFile& f : sources) {
+    auto quoted = [&](const std::string& n) { return std::regex_search(f.text, std::regex("[\"']" + n + "[\"']")); };
+    std::vector<std::string> found;
+    for (const auto& n : names)
+      if (quoted(n)) found.push_back(n);
+    EXPECT_LT(found.size(), 3u) << f.path << " names the options " << ::testing::PrintToString(found);
+    for (const auto& list : choices) {
+      std::vector<std::string> listed;
+      for (const auto& c : list)
+        if (quoted(c)) listed.push_back(c);
+      EXPECT_LT(listed.size(), 2u) << f.path << " names the choices " << ::testing::PrintToString(listed);
     }
   }
-  EXPECT_GT(scanned, 100u);
+  EXPECT_GT(sources.size(), 100u);
 }
 
 // The old experiment files' "taa" object is falcor's parameters and options; the new forms name a

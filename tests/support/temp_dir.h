@@ -4,12 +4,14 @@
 // a failing test wrote; its path is in the test's messages).
 //
 //   test::TempDir dir("runner");
-//   std::ofstream(dir / "e.json") << text;
+//   test::write_text(dir / "e.json", text);
 #pragma once
 
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -39,5 +41,15 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// A file's whole text, and writing one.
+inline std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline void write_text(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 }  // namespace glintlab::test

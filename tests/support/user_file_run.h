@@ -1,14 +1,12 @@
 // What the tests of a user's shader file (glint model, TAA resolve) share: the options of a small run
 // of an experiment file (validation on, no report, its truths cached beside its output), and writing
-// and reading the files they change.
+// and reading the files they change (tests/support/temp_dir.h).
 #pragma once
 
 #include "experiments/runner/runner.h"
+#include "tests/support/temp_dir.h"  // write_text, read_text
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <string>
 
 namespace glintlab::test {
 
@@ -20,15 +18,6 @@ inline RunOptions user_file_run_options(const std::filesystem::path& exp, const 
   o.validation = true;
   o.report = false;
   return o;
-}
-
-inline void write_text(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
-
-inline std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 }  // namespace glintlab::test

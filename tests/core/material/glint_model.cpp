@@ -7,16 +7,15 @@
 #include "core/material/sand_material.h"
 #include "core/util/json_check.h"
 #include "core/vk/compute_harness.h"
+#include "tests/support/project_sources.h"
 #include "tests/support/vk_test_util.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <set>
-#include <sstream>
 
 using namespace glintlab;
 namespace fs = std::filesystem;
@@ -139,34 +138,20 @@ TEST(GlintModel, NoSecondListOfModelNames) {
   std::vector<std::string> names;
   for (const auto& m : core::builtin_glint_models()) names.push_back(m.name);
   ASSERT_GE(names.size(), 2u);
-  const fs::path root = fs::path(GLINTLAB_SHADER_DIR).parent_path();
-  const std::set<std::string> exts = {".cpp", ".h", ".glsl", ".comp", ".frag", ".vert", ".py"};
-  const std::vector<fs::path> exempt = {root / "shaders" / "glint" / "models", root / "shaders" / "tests",
-                                        root / "core" / "testkit"};
-  size_t scanned = 0;
-  for (const char* top : {"core", "experiments", "shaders", "metrics"}) {
-    for (const auto& e : fs::recursive_directory_iterator(root / top)) {
-      if (!e.is_regular_file() || !exts.count(e.path().extension().string())) continue;
-      bool skip = false;
-      for (const auto& x : exempt) skip = skip || e.path().string().rfind(x.string(), 0) == 0;
-      if (skip) continue;
-      ++scanned;
-      std::ifstream in(e.path());
-      std::stringstream ss;
-      ss << in.rdbuf();
-      const std::string text = ss.str();
-      std::vector<std::string> found;
-      for (const auto& n : names) {
-        std::string upper = n;
-        for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
-        std::string cap = n;
-        cap[0] = char(std::toupper(static_cast<unsigned char>(cap[0])));
-        // as a string, a GLSL constant or an enum value
-        std::regex pat("[\"']" + n + "[\"']|SAND_GLINT_" + upper + "\\b|GlintModel::" + cap + "\\b");
-        if (std::regex_search(text, pat)) found.push_back(n);
-      }
-      EXPECT_LT(found.size(), 2u) << e.path() << " names the models " << ::testing::PrintToString(found);
+  const std::vector<test::SourceFile> sources =
+      test::project_sources({"shaders/glint/models", "shaders/tests", "core/testkit"});
+  for (const test::SourceFile& f : sources) {
+    std::vector<std::string> found;
+    for (const auto& n : names) {
+      std::string upper = n;
+      for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
+      std::string cap = n;
+      cap[0] = char(std::toupper(static_cast<unsigned char>(cap[0])));
+      // as a string, a GLSL constant or an enum value
+      std::regex pat("[\"']" + n + "[\"']|SAND_GLINT_" + upper + "\\b|GlintModel::" + cap + "\\b");
+      if (std::regex_search(f.text, pat)) found.push_back(n);
     }
+    EXPECT_LT(found.size(), 2u) << f.path << " names the models " << ::testing::PrintToString(found);
   }
-  EXPECT_GT(scanned, 100u);
+  EXPECT_GT(sources.size(), 100u);
 }
