@@ -18,7 +18,7 @@
 //   2. The reference: ms per sample of a grid x grid reference frame against a
 //      1-spp frame's, and a geometry-bound case (a small image, many samples).
 //   3. The TAA resolve against the surface pass of the same frame; the surface pass and resolve of taau at
-//      render scale 1/2; and on the default experiment's dunes the surface pass of native TAA, of taau at 1/2
+//      render scale 1/2, and its surface pass on the 32-triangle surface (cost set by pixels); and on the default experiment's dunes the surface pass of native TAA, of taau at 1/2
 //      on the output's grid and on the render resolution's (mesh_lod), and at 1/4: what fewer pixels save.
 //   4. Every per-frame metric of one 640x360 variant frame against a 2x2-sample
 //      render of the same frame (its reference): ms per metric.
@@ -661,7 +661,11 @@ int bench(int argc, char** argv) {
     RenderSetup up = build_variant(ctx, scene, w, h, half, core::sand_program(base, data.range, core::ProgramRole::Variant));
     const int rw = half.render_width(w), rh = half.render_height(h);
     core::FrameInputs hin = inputs(spec, data, rw, rh, {core::jitter_offset(half.taa.jitter, 0, 0.5)});
-    auto times = time_passes({&taa, &up}, {in, hin}, frames);
+    // The same surface with 32 triangles: where the pixels, not the triangles, decide the pass's cost (as on a GPU).
+    const core::MaterialProgram coarse_program = core::sand_program(base, data.range, core::ProgramRole::Variant);
+    RenderSetup ctaa = build_variant(ctx, coarse_scene, w, h, spec.variants[1], coarse_program);
+    RenderSetup cup = build_variant(ctx, coarse_scene, w, h, half, coarse_program);
+    auto times = time_passes({&taa, &up, &ctaa, &cup}, {in, hin, in, hin}, frames);
     auto& per = times[0];
     auto& hper = times[1];
     std::printf("\nTAA at %dx%d: surface pass (with motion vectors) %.2f ms, TAA resolve %.2f ms (%.3f of the surface "
@@ -671,6 +675,9 @@ int bench(int argc, char** argv) {
                 "(%.3f of native's)\n",
                 rw, rh, w, h, median(hper["surface"]), median(hper["surface"]) / median(per["surface"]),
                 median(hper["taa"]), median(hper["taa"]) / median(per["taa"]));
+    std::printf("the same surface with %zu triangles: surface pass native %.2f ms, taau at 1/2 %.2f ms (%.3f of native)\n",
+                coarse_mesh.indices.size() / 3, median(times[2]["surface"]), median(times[3]["surface"]),
+                median(times[3]["surface"]) / median(times[2]["surface"]));
 
     // The same on the dunes of the default experiment (its flyover's frame 4, its adapted grid): native TAA,
     // and taau at 1/2 on the grid adapted for the output (mesh_lod "display", the default) and for its render
