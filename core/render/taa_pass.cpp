@@ -28,7 +28,7 @@ std::vector<std::pair<const char*, uint32_t>> kept_targets(const TaaUses& u) {
 }
 }  // namespace
 
-std::vector<std::string> TaaPass::defines(const TaaSettings& s, const TaaUses& u, bool quad_share) {
+std::vector<std::string> TaaPass::defines(const TaaSettings& s, const TaaUses& u, bool quad_share, bool scaled) {
   std::vector<std::string> d = s.defines();
   auto flag = [&](const char* name, bool on) { d.push_back(std::string(name) + "=" + (on ? "1" : "0")); };
   flag("TAA_USES_MOTION", u.motion);
@@ -37,11 +37,13 @@ std::vector<std::string> TaaPass::defines(const TaaSettings& s, const TaaUses& u
   flag("TAA_USES_STATE2", u.state2);
   flag("TAA_USES_HISTORY2", u.history2);
   flag("TAA_QUAD_SHARE", quad_share);
+  flag("TAA_RENDER_SCALED", scaled);
   return d;
 }
 
 void TaaPass::compile(const TaaSettings& s) {
-  default_shader_compiler().compile("passes/taa.frag", ShaderStage::Fragment, defines(s, s.uses(), false));
+  for (bool scaled : {false, true})
+    default_shader_compiler().compile("passes/taa.frag", ShaderStage::Fragment, defines(s, s.uses(), false, scaled));
 }
 
 TaaPass::TaaPass(const VkContext& ctx, TaaSettings settings, bool share_quads)
@@ -83,26 +85,28 @@ void TaaPass::declare(PassIO& io) const {
   io.write("taa.color", kFormat, TargetUse::ColorAttachment);
 }
 
-void TaaPass::build_pipeline(bool quad_share) {
+void TaaPass::build_pipeline(bool quad_share, bool scaled) {
   ShaderCompiler& sc = default_shader_compiler();
   CompiledShader vs = sc.compile("passes/fullscreen.vert", ShaderStage::Vertex);
-  CompiledShader fs = sc.compile("passes/taa.frag", ShaderStage::Fragment, defines(s_, uses_, quad_share));
+  CompiledShader fs = sc.compile("passes/taa.frag", ShaderStage::Fragment, defines(s_, uses_, quad_share, scaled));
   ShaderModule vm = make_shader_module(ctx_, vs.spirv), fm = make_shader_module(ctx_, fs.spirv);
   VkPipelineColorBlendAttachmentState write{};
   write.colorWriteMask = 0xf;
   pipeline_ = make_fullscreen_pipeline(ctx_, layout_.get(), render_pass_.get(), vm.get(), fm.get(),
                                        std::vector<VkPipelineColorBlendAttachmentState>(outputs_.size(), write));
   quad_share_ = quad_share;
+  scaled_ = scaled;
 }
 
 void TaaPass::setup(const TargetSet& t) {
   // Whole 2x2 quads cover an image of even width and height exactly (passes/taa.frag, TAA_QUAD_SHARE).
   // Below the output resolution neighbouring pixels read other render texels than their offsets say:
-  // no sharing.
+  // no sharing. The resolve is compiled for the one case (TAA_RENDER_SCALED): llvmpipe runs both sides
+  // of a branch, so a run-time test of the scale would cost the path not taken.
   const bool native = int(t.image("color").width()) == t.width() && int(t.image("color").height()) == t.height();
   const bool quad = allow_quad_share_ && native && ctx_.fragment_quad_operations() && t.width() % 2 == 0 &&
                     t.height() % 2 == 0;
-  if (!pipeline_.get() || quad != quad_share_) build_pipeline(quad);
+  if (!pipeline_.get() || quad != quad_share_ || native == scaled_) build_pipeline(quad, !native);
   for (int slot = 0; slot < 2; ++slot) {
     VkDescriptorSet set = sets_[slot].set;
     auto sampled = [&](uint32_t binding, const Image2D& img) {

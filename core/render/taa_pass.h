@@ -31,21 +31,24 @@ class TaaPass final : public Pass {
   const TaaSettings& settings() const { return s_; }
   // Whether the pipeline built for the current targets shares fetches within quads.
   bool shares_quads() const { return quad_share_; }
-  // Compiles the resolve as the pass would (no quad sharing): ShaderCompileError naming the file and line.
+  // Compiles the resolve as the pass would (no quad sharing), at and below the output resolution:
+  // ShaderCompileError naming the file and line.
   static void compile(const TaaSettings& s);
   // What the resolve reads, for these settings.
   const TaaUses& uses() const { return uses_; }
   // The compile-time defines of passes/taa.frag for these settings.
-  static std::vector<std::string> defines(const TaaSettings& s, const TaaUses& uses, bool quad_share);
+  // scaled: the inputs are below the output resolution (TAA_RENDER_SCALED).
+  static std::vector<std::string> defines(const TaaSettings& s, const TaaUses& uses, bool quad_share, bool scaled);
 
  private:
-  void build_pipeline(bool quad_share);
+  void build_pipeline(bool quad_share, bool scaled);
 
   const VkContext& ctx_;
   TaaSettings s_;
   TaaUses uses_;
   bool allow_quad_share_ = true;
   bool quad_share_ = false;
+  bool scaled_ = false;
   std::vector<VkFormat> outputs_;
   DescriptorSetLayout set_layout_;
   PipelineLayout layout_;

@@ -351,13 +351,17 @@ std::vector<std::string> TaaSettings::defines() const {
 }
 
 TaaUses TaaSettings::uses() const {
-  // The file alone, as these settings compile it: an accessor named in code the options compile out is
-  // not used.
-  const std::string text = default_shader_compiler().preprocess(resolve->file, ShaderStage::Fragment, defines());
+  // The file alone, as these settings compile it, at and below the output resolution (the host's
+  // TAA_RENDER_SCALED): an accessor named in code the options compile out is not used.
   static const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
   std::set<std::string> words;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), identifier); it != std::sregex_iterator(); ++it)
-    words.insert(it->str());
+  for (const char* scaled : {"TAA_RENDER_SCALED=0", "TAA_RENDER_SCALED=1"}) {
+    std::vector<std::string> d = defines();
+    d.push_back(scaled);
+    const std::string text = default_shader_compiler().preprocess(resolve->file, ShaderStage::Fragment, d);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), identifier); it != std::sregex_iterator(); ++it)
+      words.insert(it->str());
+  }
   TaaUses u;
   u.motion = words.count("taa_motion") || words.count("taa_distance") || words.count("taa_distance_prev") ||
              words.count("taa_render_motion") || words.count("taa_render_distance") ||

@@ -36,8 +36,10 @@ RenderSetup build_variant(const core::VkContext& ctx, const core::SceneGpu& scen
       break;
     case AaMethod::Taa:
       auto taa = std::make_unique<core::TaaPass>(ctx, v.taa);
-      o.motion = taa->uses().motion;  // motion vectors and the glint layer, only where the resolve reads them
+      // Motion vectors and the glint layer only where the resolve reads them; the surface pass writes the
+      // glint layer beside the motion vectors, so a resolve that reads only the glint layer gets both.
       o.glint = taa->uses().glint;
+      o.motion = taa->uses().motion || o.glint;
       r.output = "taa.color";
       r.graph->add(std::make_unique<core::SurfacePass>(ctx, scene, o));
       r.graph->add(std::move(taa));

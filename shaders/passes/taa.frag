@@ -9,6 +9,9 @@
 #ifndef TAA_QUAD_SHARE
 #define TAA_QUAD_SHARE 0
 #endif
+#ifndef TAA_RENDER_SCALED
+#define TAA_RENDER_SCALED 1  // the host sets it (core/render/taa_pass.cpp); 1 serves any scale
+#endif
 #if TAA_QUAD_SHARE
 #extension GL_KHR_shader_subgroup_quad : require
 #endif

@@ -62,6 +62,9 @@
 // Reads outside the image are clamped to its edge; positions that are not finite read texel (0, 0).
 // Host capability: TAA_QUAD_SHARE is 1 where every 2x2 quad of fragments lies whole in the image and the
 // device has quad subgroup operations in fragment shaders (GL_KHR_shader_subgroup_quad is enabled then).
+// TAA_RENDER_SCALED is 1 where the inputs are below the output resolution and 0 at it (what
+// taa_render_scale() says at run time, known when the pass is compiled): `#if TAA_RENDER_SCALED` leaves
+// the other case out (a GPU without divergence skips an untaken branch; llvmpipe runs both sides).
 //
 // A resolve may not declare resources, outputs or work-group memory, nor discard: it reads what the
 // accessors give.

@@ -143,6 +143,56 @@ TEST(Upscaling, TaauAtScaleOneRendersWhatFalcorRenders) {
   EXPECT_EQ(differ, 0u);
 }
 
+// The host compiles a resolve for the case it runs (TAA_RENDER_SCALED: 0 at the output resolution, 1
+// below it) and binds what either case reads: a file that reads the glint layer only when upscaling
+// is given it there (and with it the motion vectors, beside which the surface pass writes it).
+TEST(Upscaling, TheResolveIsCompiledForItsRenderScale) {
+  core::VkContext& ctx = test::shared_context();
+  test::ValidationGuard guard(ctx);
+  test::TempDir dir("upscaling_render_scaled");
+  test::write_text(dir.path() / "r.glsl", R"(// taa_resolve checks=finite
+TaaResult taa_resolve(TaaPixel p) {
+#if TAA_RENDER_SCALED
+  // The glint layer's share of the luma under the pixel (in [0, 1]) in green; blue 1.
+  return taa_result(vec3(0.0, taa_render_glint(taa_render_texel(vec2(p.pixel) + 0.5)).a, 1.0));
+#else
+  return taa_result(vec3(1.0, 0.0, 0.0));
+#endif
+}
+)");
+  json e = sand_scene(64, 36, {{"type", "orbit"}, {"fps", 30}, {"frames", 1}, {"center", {0, 0, 0}}, {"radius", 3.6},
+                              {"height", 1.7}, {"start_deg", 180}, {"end_deg", 194}, {"fov", 40}});
+  e["material"]["glint_sigma"] = 0.2;  // broad glints: a glint layer over much of the view
+  const json file = {{"file", (dir.path() / "r.glsl").string()}};
+  e["variants"] = json::array({json{{"name", "native"}, {"aa", "taa"}, {"taa", file}},
+                               json{{"name", "half"}, {"aa", "taa"}, {"render_scale", 0.5}, {"taa", file}}});
+  const ExperimentSpec spec = ExperimentSpec::from_json(e, "inline-test");
+  EXPECT_TRUE(spec.variants[1].taa.uses().glint) << "read in one case only, bound";
+  const SceneData data = build_scene(spec, metrics::ColorManager());
+  core::SceneGpu scene(ctx, data.mesh, data.env_texture);
+  RenderedFrames frames(spec, data);
+  for (size_t v = 0; v < 2; ++v) {
+    const std::unique_ptr<ColourSource> src = rendered_variant(
+        ctx, scene, spec.variants[v], core::sand_program(spec.variants[v].material, data.range, core::ProgramRole::Variant),
+        frames);
+    const SourceFrame f = src->frame(0);
+    size_t wrong = 0, glinting = 0;
+    for (size_t p = 0; p < f.image->pixel_count(); ++p) {
+      const float* c = f.image->data.data() + 4 * p;
+      if (v == 0) {
+        wrong += !(c[0] == 1.0f && c[1] == 0.0f && c[2] == 0.0f);
+      } else {
+        wrong += !(c[0] == 0.0f && c[1] >= 0.0f && c[1] <= 1.0f && c[2] == 1.0f);
+        glinting += c[1] > 0.0f;
+      }
+    }
+    EXPECT_EQ(wrong, 0u) << spec.variants[v].name;
+    if (v == 1) {
+      EXPECT_GT(glinting, f.image->pixel_count() / 20) << "the glint layer is bound";
+    }
+  }
+}
+
 // A static view at render scale 1/2: 64 frames of an accumulating taau (16 samples per output pixel)
 // end within 1.25x the CIEDE2000 of 4x4 supersampling at the output resolution; a spatial upscale of
 // the half-resolution frame cannot recover what it never sampled (one sample per render texel, or 4x4
