@@ -83,20 +83,32 @@ TaaResult taa_resolve(TaaPixel p) {
 
   // ---- [Reproject & accumulate] step 1: the current frame upsampled with Lanczos-2 over the 5x5 (in
   // effect 4x4) render texels around S, distances in render pixels; and the YCoCg bounding box of the
-  // 3x3 render texels around S, computed from the same samples.
-  vec3 centre_adjusted = fsr2_adjusted(t0);
+  // 3x3 render texels around S, computed from the same samples. The kernel is separable and a texel's
+  // sample lies off S along x by an amount its column alone sets (along y, its row): 5 + 5 weights.
+  float wx[5], wy[5];
+  for (int k = 0; k < 5; ++k) {
+    vec2 d = (taa_render_sample(t0 + ivec2(k - 2)) - centre) * scale;  // render pixels
+    wx[k] = fsr2_lanczos2(d.x);
+    wy[k] = fsr2_lanczos2(d.y);
+  }
   vec3 sum = vec3(0.0), lo = vec3(3.4e38), hi = vec3(-3.4e38);
   float wsum = 0.0;
+  float inner_luma[9];  // the 3x3's lumas (reads past the edge clamped) for [Create locks]
+  vec3 centre_adjusted;  // t0's (t0 lies in the image)
   for (int dy = -2; dy <= 2; ++dy)
     for (int dx = -2; dx <= 2; ++dx) {
       ivec2 t = t0 + ivec2(dx, dy);
-      if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, taa_render_size()))) continue;
-      vec2 d = (taa_render_sample(t) - centre) * scale;  // render pixels
-      float w = fsr2_lanczos2(d.x) * fsr2_lanczos2(d.y);
+      bool inner = abs(dx) <= 1 && abs(dy) <= 1;
+      bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, taa_render_size()));
+      if (!inside && !inner) continue;
       vec3 c = fsr2_adjusted(t);
+      if (inner) inner_luma[(dy + 1) * 3 + dx + 1] = c.x;
+      if (dx == 0 && dy == 0) centre_adjusted = c;
+      if (!inside) continue;
+      float w = wx[dx + 2] * wy[dy + 2];
       sum += w * c;
       wsum += w;
-      if (abs(dx) <= 1 && abs(dy) <= 1) {
+      if (inner) {
         lo = min(lo, c);
         hi = max(hi, c);
       }
@@ -110,13 +122,11 @@ TaaResult taa_resolve(TaaPixel p) {
   // ---- [Create locks]: a thin feature (the centre texel's luma outside its 3x3 neighbours' range by
   // lock_threshold of that range) gets a new lock of full lifetime.
   float lc = centre_adjusted.x, nlo = 3.4e38, nhi = -3.4e38;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      if (dx == 0 && dy == 0) continue;
-      float l = fsr2_adjusted(clamp(t0 + ivec2(dx, dy), ivec2(0), taa_render_size() - 1)).x;
-      nlo = min(nlo, l);
-      nhi = max(nhi, l);
-    }
+  for (int k = 0; k < 9; ++k) {
+    if (k == 4) continue;
+    nlo = min(nlo, inner_luma[k]);
+    nhi = max(nhi, inner_luma[k]);
+  }
   float spread = max(nhi - nlo, 1e-6);
   bool new_lock = lc > nhi + p.lock_threshold * spread || lc < nlo - p.lock_threshold * spread;
 

@@ -18,7 +18,8 @@
 //   2. The reference: ms per sample of a grid x grid reference frame against a
 //      1-spp frame's, and a geometry-bound case (a small image, many samples).
 //   3. The TAA resolve against the surface pass of the same frame; the surface pass and resolve of taau at
-//      render scale 1/2, and its surface pass on the 32-triangle surface (cost set by pixels); and on the default experiment's dunes the surface pass of native TAA, of taau at 1/2
+//      render scale 1/2, and its surface pass on the 32-triangle surface (cost set by pixels); fsr2's resolve
+//      at 1/2; and on the default experiment's dunes the surface pass of native TAA, of taau at 1/2
 //      on the output's grid and on the render resolution's (mesh_lod), and at 1/4: what fewer pixels save.
 //   4. Every per-frame metric of one 640x360 variant frame against a 2x2-sample
 //      render of the same frame (its reference): ms per metric.
@@ -140,10 +141,10 @@ std::vector<std::map<std::string, std::vector<double>>> time_passes(const std::v
   return per;
 }
 
-// `v` as taau at render scale 1/2 with its default jitter (halton_fsr2).
-VariantSpec taau_half(VariantSpec v) {
+// `v` as the built-in resolve `name` (taau, fsr2) at render scale 1/2 with its default jitter (halton_fsr2).
+VariantSpec upscaler_half(VariantSpec v, const char* name = "taau") {
   v.render_scale = 0.5;
-  v.taa = core::TaaSettings(*core::find_builtin_taa_resolve("taau"));
+  v.taa = core::TaaSettings(*core::find_builtin_taa_resolve(name));
   v.taa.jitter = core::JitterSequence::HaltonFsr2;
   return v;
 }
@@ -657,15 +658,17 @@ int bench(int argc, char** argv) {
     core::FrameInputs in = inputs(spec, data, w, h, {core::jitter_offset(core::JitterSequence::Halton16, 0)});
     // Temporal upscaling at render scale 1/2 (taau): the surface pass at (w/2)x(h/2), the resolve at w x h,
     // in the same run as the native rows.
-    const VariantSpec half = taau_half(spec.variants[1]);
+    const VariantSpec half = upscaler_half(spec.variants[1]);
     RenderSetup up = build_variant(ctx, scene, w, h, half, core::sand_program(base, data.range, core::ProgramRole::Variant));
+    RenderSetup fsr = build_variant(ctx, scene, w, h, upscaler_half(spec.variants[1], "fsr2"),
+                                    core::sand_program(base, data.range, core::ProgramRole::Variant));
     const int rw = half.render_width(w), rh = half.render_height(h);
     core::FrameInputs hin = inputs(spec, data, rw, rh, {core::jitter_offset(half.taa.jitter, 0, 0.5)});
     // The same surface with 32 triangles: where the pixels, not the triangles, decide the pass's cost (as on a GPU).
     const core::MaterialProgram coarse_program = core::sand_program(base, data.range, core::ProgramRole::Variant);
     RenderSetup ctaa = build_variant(ctx, coarse_scene, w, h, spec.variants[1], coarse_program);
     RenderSetup cup = build_variant(ctx, coarse_scene, w, h, half, coarse_program);
-    auto times = time_passes({&taa, &up, &ctaa, &cup}, {in, hin, in, hin}, frames);
+    auto times = time_passes({&taa, &up, &ctaa, &cup, &fsr}, {in, hin, in, hin, hin}, frames);
     auto& per = times[0];
     auto& hper = times[1];
     std::printf("\nTAA at %dx%d: surface pass (with motion vectors) %.2f ms, TAA resolve %.2f ms (%.3f of the surface "
@@ -675,6 +678,8 @@ int bench(int argc, char** argv) {
                 "(%.3f of native's)\n",
                 rw, rh, w, h, median(hper["surface"]), median(hper["surface"]) / median(per["surface"]),
                 median(hper["taa"]), median(hper["taa"]) / median(per["taa"]));
+    std::printf("fsr2 at render scale 1/2: resolve %.2f ms (%.3f of native's)\n", median(times[4]["taa"]),
+                median(times[4]["taa"]) / median(per["taa"]));
     std::printf("the same surface with %zu triangles: surface pass native %.2f ms, taau at 1/2 %.2f ms (%.3f of native)\n",
                 coarse_mesh.indices.size() / 3, median(times[2]["surface"]), median(times[3]["surface"]),
                 median(times[3]["surface"]) / median(times[2]["surface"]));
@@ -689,7 +694,7 @@ int bench(int argc, char** argv) {
     for (const VariantSpec& v : dspec.variants)
       if (v.name == "taa") dtaa = &v;
     if (!dtaa) throw std::runtime_error("the default experiment has no variant \"taa\"");
-    const VariantSpec dhalf = taau_half(*dtaa);
+    const VariantSpec dhalf = upscaler_half(*dtaa);
     VariantSpec drender = dhalf;
     drender.mesh_lod = "render";
     VariantSpec dquarter = dhalf;  // what a lower resolution does not shrink: the triangles' own cost
