@@ -103,10 +103,10 @@ void TaaPass::setup(const TargetSet& t) {
   // Below the output resolution neighbouring pixels read other render texels than their offsets say:
   // no sharing. The resolve is compiled for the one case (TAA_RENDER_SCALED): llvmpipe runs both sides
   // of a branch, so a run-time test of the scale would cost the path not taken.
-  const bool native = int(t.image("color").width()) == t.width() && int(t.image("color").height()) == t.height();
-  const bool quad = allow_quad_share_ && native && ctx_.fragment_quad_operations() && t.width() % 2 == 0 &&
+  const bool scaled = int(t.image("color").width()) != t.width() || int(t.image("color").height()) != t.height();
+  const bool quad = allow_quad_share_ && !scaled && ctx_.fragment_quad_operations() && t.width() % 2 == 0 &&
                     t.height() % 2 == 0;
-  if (!pipeline_.get() || quad != quad_share_ || native == scaled_) build_pipeline(quad, !native);
+  if (!pipeline_.get() || quad != quad_share_ || scaled != scaled_) build_pipeline(quad, scaled);
   for (int slot = 0; slot < 2; ++slot) {
     VkDescriptorSet set = sets_[slot].set;
     auto sampled = [&](uint32_t binding, const Image2D& img) {

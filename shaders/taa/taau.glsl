@@ -23,6 +23,9 @@
 // At s = 1 the current is the pixel's own sample, the box and motion its 3x3 and W = 1: the frames
 // falcor renders with the same choices (taau adds nothing where there is nothing to upsample).
 
+// Whether falcor reads the glint layer (its FALCOR_GLINT, defined when taa/falcor.glsl is included below).
+#define TAAU_GLINT (TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock)
+
 struct TaauCurrent {
   vec3 rgb;
   vec4 glint;
@@ -33,7 +36,7 @@ struct TaauCurrent {
   // accessors give them): fetched once for the reconstruction, read again as falcor's neighbourhood
   // (one fetch fewer for each of eight neighbours: 15 % of the resolve on llvmpipe).
   vec3 nb[9];
-#if TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock
+#if TAAU_GLINT
   vec4 gnb[9];
 #endif
 #endif
@@ -45,7 +48,7 @@ void taau_begin(TaaPixel px) {
   taau_g.texel = taa_render_texel(centre);
 #if !TAA_RENDER_SCALED
   taau_g.rgb = taa_current(ivec2(0));
-#if TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock
+#if TAAU_GLINT
   taau_g.glint = taa_glint(ivec2(0));
 #endif
   taau_g.weight = 1.0;
@@ -59,7 +62,7 @@ void taau_begin(TaaPixel px) {
       ivec2 t = taau_g.texel + ivec2(dx, dy);
       vec3 c = taa_render_color(t);
       taau_g.nb[(dy + 1) * 3 + dx + 1] = c;
-#if TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock
+#if TAAU_GLINT
       vec4 g = taa_render_glint(t);
       taau_g.gnb[(dy + 1) * 3 + dx + 1] = g;
 #endif
@@ -73,7 +76,7 @@ void taau_begin(TaaPixel px) {
         inside += c;
         count += 1.0;
       }
-#if TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock
+#if TAAU_GLINT
       gsum += w * g;
       if (in_pixel) ginside += g;
 #endif
@@ -88,7 +91,7 @@ void taau_begin(TaaPixel px) {
     taau_g.glint = gsum / wsum;
   } else {
     taau_g.rgb = taau_g.nb[4];
-#if TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock
+#if TAAU_GLINT
     taau_g.glint = taau_g.gnb[4];
 #endif
   }
@@ -100,7 +103,7 @@ void taau_begin(TaaPixel px) {
 // as taau_begin fetched them (at scale 1 the pixel's own neighbours, which are those texels).
 #if TAA_RENDER_SCALED
 vec3 taau_neighbour_rgb(ivec2 o) { return taau_g.nb[(o.y + 1) * 3 + o.x + 1]; }
-#if TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock
+#if TAAU_GLINT
 vec4 taau_neighbour_glint(ivec2 o) { return taau_g.gnb[(o.y + 1) * 3 + o.x + 1]; }
 #endif
 vec4 taau_neighbour_motion(ivec2 o) {
@@ -109,7 +112,7 @@ vec4 taau_neighbour_motion(ivec2 o) {
 }
 #else
 vec3 taau_neighbour_rgb(ivec2 o) { return taa_current(o); }
-#if TAA_ON_reactive || TAA_ON_glint_layer || TAA_ON_glint_lock
+#if TAAU_GLINT
 vec4 taau_neighbour_glint(ivec2 o) { return taa_glint(o); }
 #endif
 vec4 taau_neighbour_motion(ivec2 o) { return vec4(taa_motion(o), taa_distance(o), taa_distance_prev(o)); }

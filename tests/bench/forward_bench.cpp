@@ -653,21 +653,19 @@ int bench(int argc, char** argv) {
   // ---- 3. TAA resolve vs the surface pass of its frame
   if (section("taa")) {
     const int w = sizes.front().first, h = sizes.front().second;
-    RenderSetup taa = build_variant(ctx, scene, w, h, spec.variants[1], core::sand_program(base, data.range,
-                                                                                           core::ProgramRole::Variant));
+    const core::MaterialProgram program = core::sand_program(base, data.range, core::ProgramRole::Variant);
+    RenderSetup taa = build_variant(ctx, scene, w, h, spec.variants[1], program);
     core::FrameInputs in = inputs(spec, data, w, h, {core::jitter_offset(core::JitterSequence::Halton16, 0)});
     // Temporal upscaling at render scale 1/2 (taau): the surface pass at (w/2)x(h/2), the resolve at w x h,
     // in the same run as the native rows.
     const VariantSpec half = upscaler_half(spec.variants[1]);
-    RenderSetup up = build_variant(ctx, scene, w, h, half, core::sand_program(base, data.range, core::ProgramRole::Variant));
-    RenderSetup fsr = build_variant(ctx, scene, w, h, upscaler_half(spec.variants[1], "fsr2"),
-                                    core::sand_program(base, data.range, core::ProgramRole::Variant));
+    RenderSetup up = build_variant(ctx, scene, w, h, half, program);
+    RenderSetup fsr = build_variant(ctx, scene, w, h, upscaler_half(spec.variants[1], "fsr2"), program);
     const int rw = half.render_width(w), rh = half.render_height(h);
     core::FrameInputs hin = inputs(spec, data, rw, rh, {core::jitter_offset(half.taa.jitter, 0, 0.5)});
     // The same surface with 32 triangles: where the pixels, not the triangles, decide the pass's cost (as on a GPU).
-    const core::MaterialProgram coarse_program = core::sand_program(base, data.range, core::ProgramRole::Variant);
-    RenderSetup ctaa = build_variant(ctx, coarse_scene, w, h, spec.variants[1], coarse_program);
-    RenderSetup cup = build_variant(ctx, coarse_scene, w, h, half, coarse_program);
+    RenderSetup ctaa = build_variant(ctx, coarse_scene, w, h, spec.variants[1], program);
+    RenderSetup cup = build_variant(ctx, coarse_scene, w, h, half, program);
     auto times = time_passes({&taa, &up, &ctaa, &cup, &fsr}, {in, hin, in, hin, hin}, frames);
     auto& per = times[0];
     auto& hper = times[1];
