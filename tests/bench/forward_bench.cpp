@@ -20,7 +20,8 @@
 //   3. The TAA resolve against the surface pass of the same frame; the surface pass and resolve of taau at
 //      render scale 1/2, and its surface pass on the 32-triangle surface (cost set by pixels); fsr2's resolve
 //      at 1/2; and on the default experiment's dunes the surface pass of native TAA, of taau at 1/2
-//      on the output's grid and on the render resolution's (mesh_lod), and at 1/4: what fewer pixels save.
+//      on the output's grid and on the render resolution's (mesh_lod), and at 1/4: what fewer pixels save;
+//      the floors (no material) of native and of taau 1/2 on the render grid, and the material above them.
 //   4. Every per-frame metric of one 640x360 variant frame against a 2x2-sample
 //      render of the same frame (its reference): ms per metric.
 //   5. `glintlab measure` end to end on files: a 1920x1080 test sequence against
@@ -713,19 +714,31 @@ int bench(int argc, char** argv) {
       vin.samples = core::samples_for(dspec.path, 4, vw, vh, {core::jitter_offset(v.taa.jitter, 0, v.render_scale)});
       dinputs.push_back(vin);
     }
+    // Their floors (no material: the cost of the triangles and the passes, which fewer pixels shrink only in
+    // part): native and taau 1/2 on the render resolution's grid.
+    for (size_t c : {size_t(0), size_t(2)}) {
+      dsetups.push_back(build_variant(ctx, dgpus.of(dspec.variants[c]), w, h, dspec.variants[c],
+                                      core::geometry_only_program()));
+      dinputs.push_back(dinputs[c]);
+    }
     std::vector<RenderSetup*> dptrs;
     for (RenderSetup& r : dsetups) dptrs.push_back(&r);
     auto dper = time_passes(dptrs, dinputs, frames);
     std::printf("on the default experiment's dunes at %dx%d (flyover frame 4), surface pass:\n", w, h);
     std::printf("  %-34s %11s %11s %9s\n", "variant", "triangles", "ms", "ratio");
-    const char* labels[] = {"native TAA (falcor)", "taau 1/2, mesh_lod display", "taau 1/2, mesh_lod render",
-                            "taau 1/4, mesh_lod display"};
+    const char* labels[] = {"native TAA (falcor)",        "taau 1/2, mesh_lod display", "taau 1/2, mesh_lod render",
+                            "taau 1/4, mesh_lod display", "native TAA, floor",          "taau 1/2 render, floor"};
+    const size_t of_variant[] = {0, 1, 2, 3, 0, 2};
     for (size_t c = 0; c < dsetups.size(); ++c) {
-      const bool lod = dspec.variants[c].mesh_lod == "render";
+      const bool lod = dspec.variants[of_variant[c]].mesh_lod == "render";
       std::printf("  %-34s %11zu %11.2f %9.3f\n", labels[c],
                   (lod ? ddata.render_lods.at(0.5) : ddata.mesh).indices.size() / 3, median(dper[c]["surface"]),
                   median(dper[c]["surface"]) / median(dper[0]["surface"]));
     }
+    const double above_native = median(dper[0]["surface"]) - median(dper[4]["surface"]);
+    const double above_half = median(dper[2]["surface"]) - median(dper[5]["surface"]);
+    std::printf("  the material above its floor: native %.2f ms, taau 1/2 render %.2f ms (%.3f of native)\n",
+                above_native, above_half, above_half / above_native);
   }
 
   // ---- 4. metrics of one variant frame
