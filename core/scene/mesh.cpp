@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -138,29 +139,59 @@ void adaptive_height_field_mesh(Mesh& m, const MeshSpec& s, const HeightGrad& h_
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) height[size_t(j) * size_t(n + 1) + size_t(i)] = height_field_vertex(s, h_grad, i, j).position.y;
   }
-  // A bound on how far (vertically) any triangulation of the leaf's own grid points lies from the
-  // full grid over the leaf: twice the largest distance of those points from a plane (here the
-  // plane through the mean of the corners with their mean slopes). Every triangle of either mesh
-  // interpolates points within that distance of the plane, so both surfaces lie within it, and
-  // within twice it of each other; this holds for the leaf's two triangles and for every fan.
-  auto error_bound = [&](int i0, int j0, int w) {
-    auto h = [&](int i, int j) { return height[size_t(j) * size_t(n + 1) + size_t(i)]; };
-    const double h00 = h(i0, j0), h10 = h(i0 + w, j0), h01 = h(i0, j0 + w), h11 = h(i0 + w, j0 + w);
-    const double mean = 0.25 * (h00 + h10 + h01 + h11);
-    const double sx = 0.5 * ((h10 + h11) - (h00 + h01)), sy = 0.5 * ((h01 + h11) - (h00 + h10));
+  auto h = [&](int i, int j) { return height[size_t(j) * size_t(n + 1) + size_t(i)]; };
+  // The largest vertical distance between the full grid and one triangle of grid points (a, b, c).
+  // Both surfaces are linear between the points where their edges cross: the grid points, and, where
+  // the triangle's edge runs across the full grid's quads (a fan's edge from the centre to corner
+  // (1, 0) or (0, 1)), the quads' centres, where the full grid has the mean of its diagonal's ends.
+  // Coordinates are doubled so that both kinds of point are integers and the inside test exact.
+  auto triangle_error = [&](glm::ivec2 a, glm::ivec2 b, glm::ivec2 c) {
+    a *= 2, b *= 2, c *= 2;
+    const int64_t det = int64_t(b.x - a.x) * (c.y - a.y) - int64_t(c.x - a.x) * (b.y - a.y);
+    const double ha = h(a.x / 2, a.y / 2), hb = h(b.x / 2, b.y / 2), hc = h(c.x / 2, c.y / 2);
+    const glm::ivec2 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
     double d = 0.0;
-    for (int j = j0; j <= j0 + w; ++j)
-      for (int i = i0; i <= i0 + w; ++i) {
-        const double a = double(i - i0) / w - 0.5, b = double(j - j0) / w - 0.5;
-        d = std::max(d, std::abs(h(i, j) - (mean + a * sx + b * sy)));
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x + ((lo.x + y) & 1); x <= hi.x; x += 2) {  // x + y even: grid points, quad centres
+        const int64_t wb = int64_t(x - a.x) * (c.y - a.y) - int64_t(c.x - a.x) * (y - a.y);
+        const int64_t wc = int64_t(b.x - a.x) * (y - a.y) - int64_t(x - a.x) * (b.y - a.y);
+        const int64_t wa = det - wb - wc;
+        if (det > 0 ? (wa < 0 || wb < 0 || wc < 0) : (wa > 0 || wb > 0 || wc > 0)) continue;
+        const double full = x % 2 == 0 ? h(x / 2, y / 2) : 0.5 * (h(x / 2, y / 2) + h(x / 2 + 1, y / 2 + 1));
+        d = std::max(d, std::abs(full - (ha + (double(wb) * (hb - ha) + double(wc) * (hc - ha)) / double(det))));
       }
-    return 2.0 * d;
+    return d;
+  };
+  // A leaf's error: the largest of the errors of the triangles it may be emitted with (its two, or a
+  // fan around its centre through the midpoint of any of its sides, see the emission below) and,
+  // since the restriction below may split it further, of those of every cell inside it. Exact where
+  // it matters: a cell is kept whole exactly when no surface it can become strays too far.
+  std::vector<std::vector<double>> memo(size_t(top) + 1);  // per level; < 0: not computed yet
+  std::function<double(int, int, int)> leaf_error = [&](int i0, int j0, int k) -> double {
+    if (k == 0) return 0.0;  // the full grid's own quad
+    std::vector<double>& mk = memo[size_t(k)];
+    const int cells = n >> k;
+    if (mk.empty()) mk.assign(size_t(cells) * size_t(cells), -1.0);
+    double& slot = mk[size_t(j0 >> k) * size_t(cells) + size_t(i0 >> k)];
+    if (slot >= 0.0) return slot;
+    const int w = 1 << k, hw = w / 2;
+    const glm::ivec2 p00(i0, j0), p10(i0 + w, j0), p11(i0 + w, j0 + w), p01(i0, j0 + w), c(i0 + hw, j0 + hw);
+    double e = std::max(triangle_error(p00, p11, p10), triangle_error(p00, p01, p11));
+    const glm::ivec2 ring[4][3] = {{p00, {i0 + hw, j0}, p10},
+                                   {p10, {i0 + w, j0 + hw}, p11},
+                                   {p11, {i0 + hw, j0 + w}, p01},
+                                   {p01, {i0, j0 + hw}, p00}};
+    for (const auto& side : ring)
+      e = std::max({e, triangle_error(c, side[0], side[2]), triangle_error(c, side[0], side[1]),
+                    triangle_error(c, side[1], side[2])});
+    for (int q = 0; q < 4; ++q) e = std::max(e, leaf_error(i0 + (q & 1) * hw, j0 + (q >> 1) * hw, k - 1));
+    return slot = e;
   };
   // Split a cell while some view sees its edge wider than max_edge_px and (with max_error_px) its
-  // error bound larger than max_error_px; the cell's box spans the field's whole height range
+  // error larger than max_error_px; the cell's box spans the field's whole height range
   // (nearer to the eye than the cell itself: errs towards splitting).
-  auto too_wide = [&](int i0, int j0, int width) {
-    const double edge = width * unit;
+  auto too_wide = [&](int i0, int j0, int k) {
+    const double edge = (1 << k) * unit;
     const glm::dvec3 lo(-half + i0 * unit, h_lo, -half + j0 * unit), hi = lo + glm::dvec3(edge, h_hi - h_lo, edge);
     double error = -1.0;  // computed on first need
     for (const MeshView& v : views) {
@@ -168,7 +199,7 @@ void adaptive_height_field_mesh(Mesh& m, const MeshSpec& s, const HeightGrad& h_
       const double dist = std::sqrt(glm::dot(d, d));
       if (!(edge * double(v.focal_px) > double(s.max_edge_px) * dist)) continue;
       if (!(s.max_error_px > 0.0f)) return true;
-      if (error < 0.0) error = error_bound(i0, j0, width);
+      if (error < 0.0) error = leaf_error(i0, j0, k);
       if (error * double(v.focal_px) > double(s.max_error_px) * dist) return true;
     }
     return false;
@@ -189,7 +220,7 @@ void adaptive_height_field_mesh(Mesh& m, const MeshSpec& s, const HeightGrad& h_
   while (!stack.empty()) {
     const Cell c = stack.back();
     stack.pop_back();
-    if (c.k > 0 && too_wide(c.i0, c.j0, 1 << c.k)) {
+    if (c.k > 0 && too_wide(c.i0, c.j0, c.k)) {
       const int h = 1 << (c.k - 1);
       for (int q = 0; q < 4; ++q) stack.push_back({c.i0 + (q & 1) * h, c.j0 + (q >> 1) * h, c.k - 1});
     } else {

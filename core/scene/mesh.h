@@ -68,9 +68,10 @@ struct Mesh {
 //           finer one is a fan around its centre, so the mesh has no cracks; every vertex is one of
 //           the full grid's, with the same attributes (build_mesh with `views`).
 //   plane/wavy/dunes: "max_error_px" (default 0 = off; needs max_edge_px): a merged cell wider
-//           than max_edge_px is kept where it is flat enough: where, from every camera position, a
-//           bound on its vertical distance from the full grid (any of its triangulations) spans at
-//           most this many pixels. Silhouettes and positions stay within it of the full grid's.
+//           than max_edge_px is kept where it is flat enough: where, from every camera position, its
+//           largest vertical distance from the full grid (exact, over every triangulation it and the
+//           cells inside it may get) spans at most this many pixels. Silhouettes and positions stay
+//           within it of the full grid's.
 //   any:    "motion": rigid motion of the mesh over time (core/scene/object_motion.h)
 struct MeshSpec {
   std::string type = "plane";

@@ -267,7 +267,9 @@ TEST(Upscaling, TheZoomedContactSheetIsChecked) {
 // "mesh_lod": below scale 1 a variant on an adaptive grid draws the output's grid ("display", the
 // default, as native variants and the truth do) or the grid adapted for its render resolution
 // ("render"): the very grid a run at that resolution draws, fewer triangles. Its images stay close to
-// the display grid's (no cracks, no lost surface): the grid keeps its bounds, in render pixels.
+// the display grid's (no cracks, no lost surface): the grid keeps its bounds, in render pixels, whose
+// 0.5 px of error is a whole output pixel, so its error against the truth may grow by half (a crack or
+// a lost patch of surface shows sky: far more).
 TEST(Upscaling, MeshLodRenderDrawsTheGridAdaptedForTheRenderResolution) {
   core::VkContext& ctx = test::shared_context();
   test::ValidationGuard guard(ctx);
@@ -307,7 +309,7 @@ TEST(Upscaling, MeshLodRenderDrawsTheGridAdaptedForTheRenderResolution) {
   ASSERT_EQ(mean.size(), 3u);
   std::printf("mean CIEDE2000: native %.3f, render-lod %.3f, display-lod %.3f\n", mean["native"], mean["render-lod"],
               mean["display-lod"]);
-  EXPECT_LE(mean["render-lod"], 1.35 * mean["display-lod"]);
+  EXPECT_LE(mean["render-lod"], 1.5 * mean["display-lod"]);
   EXPECT_NE(mean["render-lod"], mean["display-lod"]) << "another grid draws another image";
   const json summary = read_json_file((dir.path() / "out" / "summary.json").string());
   EXPECT_EQ(summary["variants"][1]["mesh_lod"], "render");
